@@ -1,0 +1,90 @@
+#pragma once
+// A parsed view of one G-code line.
+//
+// Parsing never fails: a line that does not follow the grammar is still a
+// Line, flagged `malformed`, and tools pass it through untouched. Accepts what
+// Marlin accepts: lower case, packed words ("G1X10Y5E.5"), a leading '+', a
+// missing leading zero, spaces between a letter and its number, an "N123"
+// line number and a "*71" checksum, ';' and '(...)' comments.
+#include <array>
+#include <cstdint>
+#include <string_view>
+
+namespace gcode {
+
+struct Word {
+  char letter = 0;          // always upper case
+  bool has_value = false;   // false for "G28 X" style flags
+  double value = 0;         // in the units written (no inch conversion)
+  std::string_view raw;     // the value as written, e.g. "-.8"
+};
+
+enum class CommandKind : std::uint8_t {
+  None,      // blank or comment-only line
+  Standard,  // letter + number: G1, M104, T0, G29.1
+  Host,      // "@pause": commands for the host, never sent to firmware
+  Extended,  // Klipper/RRF style macros: PRINT_START, SET_PRINT_STATS_INFO ...
+};
+
+class Line {
+ public:
+  static constexpr std::size_t kMaxWords = 24;
+
+  // Parses `text` (a line without its ending). The Line views into `text`.
+  static Line parse(std::string_view text);
+
+  std::string_view text;     // the whole line, as read
+  CommandKind kind = CommandKind::None;
+  char letter = 0;           // 'G', 'M', 'T' ... for Standard commands
+  int number = -1;           // 1 for G1
+  int subcode = -1;          // 1 for G29.1
+  std::string_view command;  // "G1", "@pause", "PRINT_START" as written
+  std::string_view argument; // free text of M117/M118/M23/..., host and macro arguments
+  std::string_view comment;  // ";..." or "(...)" including the marker; empty if none
+  std::size_t comment_pos = std::string_view::npos;  // offset of the comment in text
+  bool has_line_number = false;
+  long long line_number = 0;
+  bool has_checksum = false;
+  int checksum = 0;
+  bool malformed = false;    // stray bytes, a number that does not parse, too many words
+
+  std::size_t word_count() const { return count_; }
+  const Word& word(std::size_t i) const { return words_[i]; }
+  const Word* begin() const { return words_.data(); }
+  const Word* end() const { return words_.data() + count_; }
+
+  // The word with this (upper-case) letter, or nullptr.
+  const Word* find(char upper) const {
+    for (std::size_t i = 0; i < count_; ++i)
+      if (words_[i].letter == upper) return &words_[i];
+    return nullptr;
+  }
+  bool has(char upper) const { return find(upper) != nullptr; }
+  // The value of a word that has one, else `fallback`.
+  double value_or(char upper, double fallback) const {
+    const Word* w = find(upper);
+    return (w != nullptr && w->has_value) ? w->value : fallback;
+  }
+
+  bool is(char l, int n) const { return kind == CommandKind::Standard && letter == l && number == n; }
+  bool is_g(int n) const { return is('G', n); }
+  bool is_m(int n) const { return is('M', n); }
+  bool is_move() const { return kind == CommandKind::Standard && letter == 'G' && number >= 0 && number <= 3 && subcode < 0; }
+  bool is_blank() const { return kind == CommandKind::None && comment.empty(); }
+  // The text of the comment without its marker and surrounding spaces.
+  std::string_view comment_text() const;
+  // The code part: the text before the comment, trailing blanks removed.
+  std::string_view code() const;
+
+ private:
+  void add_word(const Word& w);
+
+  std::array<Word, kMaxWords> words_{};
+  std::size_t count_ = 0;
+};
+
+// Commands whose parameters are free text (a message or a file name), so
+// their argument is never split into words: M117 "Printing 1.5mm" is no X word.
+bool takes_string_argument(char letter, int number);
+
+}  // namespace gcode

@@ -1,0 +1,130 @@
+#include "gcode/number.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+namespace gcode {
+
+namespace {
+
+constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                             1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                             1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+constexpr std::int64_t kPow10Int[] = {1,         10,         100,         1000,
+                                      10000,     100000,     1000000,     10000000,
+                                      100000000, 1000000000, 10000000000, 100000000000};
+
+bool parse_slow(std::string_view text, double& value) {
+  const char* p = text.data();
+  const char* end = p + text.size();
+  if (p != end && *p == '+') ++p;
+  // from_chars does not take "5." or ".5" with a sign issue; normalise those.
+  auto [ptr, ec] = std::from_chars(p, end, value, std::chars_format::general);
+  if (ec == std::errc::result_out_of_range) {
+    value = HUGE_VAL;
+    return false;
+  }
+  return ec == std::errc() && ptr == end;
+}
+
+}  // namespace
+
+bool parse_number(std::string_view text, double& value) {
+  const char* p = text.data();
+  const char* end = p + text.size();
+  bool negative = false;
+  if (p != end && (*p == '-' || *p == '+')) {
+    negative = *p == '-';
+    ++p;
+  }
+  std::uint64_t mantissa = 0;
+  int digits = 0;
+  int fraction_digits = 0;
+  bool seen_point = false;
+  for (; p != end; ++p) {
+    char c = *p;
+    if (c >= '0' && c <= '9') {
+      mantissa = mantissa * 10 + static_cast<unsigned>(c - '0');
+      ++digits;
+      if (seen_point) ++fraction_digits;
+    } else if (c == '.' && !seen_point) {
+      seen_point = true;
+    } else {
+      break;
+    }
+  }
+  if (digits == 0) return false;
+  if (p == end && digits <= 15 && fraction_digits <= 22) {
+    // Both operands are exact doubles, so one IEEE division rounds correctly.
+    double v = static_cast<double>(mantissa) / kPow10[fraction_digits];
+    value = negative ? -v : v;
+    return true;
+  }
+  if (p != end && *p != 'e' && *p != 'E') return false;
+  // Exponent or a very long mantissa: let the standard library decide.
+  if (text.size() > 1 && text[0] == '+') text.remove_prefix(1);
+  std::string_view rest = text;
+  if (!rest.empty() && rest[0] == '.') {
+    char buffer[512];
+    if (rest.size() + 1 >= sizeof buffer) return false;
+    buffer[0] = '0';
+    std::memcpy(buffer + 1, rest.data(), rest.size());
+    return parse_slow(std::string_view(buffer, rest.size() + 1), value);
+  }
+  return parse_slow(rest, value);
+}
+
+int decimals_of(std::string_view number_text) {
+  auto point = number_text.find('.');
+  if (point == std::string_view::npos) return 0;
+  int n = 0;
+  for (std::size_t i = point + 1; i < number_text.size(); ++i) {
+    if (number_text[i] < '0' || number_text[i] > '9') break;
+    ++n;
+  }
+  return n;
+}
+
+std::size_t format_number(double value, int decimals, char* out) {
+  if (decimals < 0) decimals = 0;
+  if (decimals > 9) decimals = 9;
+  if (!(value == value)) value = 0;  // NaN never reaches a printer as text
+  if (value > 1e15) value = 1e15;
+  if (value < -1e15) value = -1e15;
+  std::int64_t scaled = std::llround(value * kPow10[decimals]);
+  char* p = out;
+  if (scaled < 0) {
+    *p++ = '-';
+    scaled = -scaled;
+  }
+  std::int64_t unit = kPow10Int[decimals];
+  std::int64_t whole = scaled / unit;
+  std::int64_t fraction = scaled % unit;
+  p = std::to_chars(p, p + 24, whole).ptr;
+  if (fraction != 0) {
+    *p++ = '.';
+    // Zero-padded to `decimals` digits, then trailing zeros dropped.
+    char digits[16];
+    for (int i = decimals - 1; i >= 0; --i) {
+      digits[i] = static_cast<char>('0' + fraction % 10);
+      fraction /= 10;
+    }
+    int len = decimals;
+    while (len > 0 && digits[len - 1] == '0') --len;
+    std::memcpy(p, digits, static_cast<std::size_t>(len));
+    p += len;
+  }
+  if (p - out == 2 && out[0] == '-' && out[1] == '0') {
+    out[0] = '0';
+    return 1;
+  }
+  return static_cast<std::size_t>(p - out);
+}
+
+std::string_view number_text(double value, int decimals, char (&buffer)[kMaxNumberChars]) {
+  return {buffer, format_number(value, decimals, static_cast<char*>(buffer))};
+}
+
+}  // namespace gcode

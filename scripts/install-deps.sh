@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Installs the Debian packages gcode-tools needs to build and test, and only
+# those that are missing: on a machine that has them all it does nothing.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config   # compiler and build
+  libcli11-dev libfmt-dev libre2-dev # the library and tools
+  catch2                             # unit and tool tests
+  clang                              # libFuzzer targets
+  libserialport-dev                  # gc-send: serial ports
+  librsvg2-bin libxml2-utils         # tests: render and validate SVG
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+echo "install-deps: installing ${missing[*]}" >&2
+$sudo apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

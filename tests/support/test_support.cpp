@@ -1,0 +1,116 @@
+#include "test_support.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "gcode/line.hpp"
+#include "gcode/line_reader.hpp"
+
+namespace gctest {
+
+namespace fs = std::filesystem;
+
+std::string fixture_path(std::string_view name) { return std::string(GC_FIXTURES_DIR) + "/" + std::string(name); }
+std::string tool_path(std::string_view tool) { return std::string(GC_TOOLS_DIR) + "/" + std::string(tool); }
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + path);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void write_file(const std::string& path, std::string_view data) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(data.data(), static_cast<std::streamsize>(data.size()));
+  if (!out) throw std::runtime_error("cannot write " + path);
+}
+
+std::vector<std::string> fixture_names() {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(GC_FIXTURES_DIR))
+    if (e.path().extension() == ".gcode") names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::string temp_dir() {
+  static std::atomic<int> counter{0};
+  fs::path p = fs::temp_directory_path() /
+               ("gctest-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p.string();
+}
+
+std::string quote(std::string_view arg) {
+  std::string q = "'";
+  for (char c : arg) {
+    if (c == '\'') {
+      q += "'\\''";
+    } else {
+      q += c;
+    }
+  }
+  return q + "'";
+}
+
+RunResult run(const std::string& command_line, std::string_view input) {
+  std::string dir = temp_dir();
+  std::string in_path = dir + "/stdin", out_path = dir + "/stdout", err_path = dir + "/stderr";
+  write_file(in_path, input);
+  std::string full = "(" + command_line + ") <" + quote(in_path) + " >" + quote(out_path) + " 2>" + quote(err_path);
+  int raw = std::system(full.c_str());
+  RunResult r;
+  if (WIFEXITED(raw)) {
+    r.status = WEXITSTATUS(raw);
+  } else if (WIFSIGNALED(raw)) {
+    r.status = 128 + WTERMSIG(raw);
+  }
+  r.out = read_file(out_path);
+  r.err = read_file(err_path);
+  fs::remove_all(dir);
+  return r;
+}
+
+std::vector<std::string> split_lines(std::string_view text) {
+  std::vector<std::string> lines;
+  gcode::MemoryLineSplitter split(text);
+  gcode::RawLine raw;
+  while (split.next(raw)) lines.emplace_back(std::string(raw.text) + std::string(raw.ending));
+  return lines;
+}
+
+std::vector<ReplayedMove> replay_moves(std::string_view text) {
+  std::vector<ReplayedMove> moves;
+  gcode::MachineState state;
+  gcode::MemoryLineSplitter split(text);
+  gcode::RawLine raw;
+  std::size_t index = 0;
+  while (split.next(raw)) {
+    gcode::Line line = gcode::Line::parse(raw.text);
+    gcode::Move m = state.apply(line);
+    if (m.kind == gcode::MoveKind::Linear || m.kind == gcode::MoveKind::Arc) moves.push_back({m, state, index});
+    ++index;
+  }
+  return moves;
+}
+
+gcode::MachineState replay_state(std::string_view text) {
+  gcode::MachineState state;
+  gcode::MemoryLineSplitter split(text);
+  gcode::RawLine raw;
+  while (split.next(raw)) state.apply(gcode::Line::parse(raw.text));
+  return state;
+}
+
+}  // namespace gctest

@@ -1,0 +1,43 @@
+#pragma once
+// Helpers shared by the tests: fixture paths, reading files, running a built
+// tool, and replaying G-code through the library into plain records that
+// tests compare (the "independent checker" of the tool tests).
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "gcode/machine_state.hpp"
+
+namespace gctest {
+
+std::string fixture_path(std::string_view name);
+std::string tool_path(std::string_view tool);
+std::string read_file(const std::string& path);
+void write_file(const std::string& path, std::string_view data);
+// All fixture file names (*.gcode) in tests/fixtures.
+std::vector<std::string> fixture_names();
+// A fresh empty directory under the build's temp area.
+std::string temp_dir();
+
+struct RunResult {
+  int status = -1;      // exit status, or 128+signal
+  std::string out;
+  std::string err;
+};
+// Runs a shell command line (arguments already quoted), feeding `input` on stdin.
+RunResult run(const std::string& command_line, std::string_view input = {});
+std::string quote(std::string_view arg);
+
+// Splits text into lines the way the library does (endings kept).
+std::vector<std::string> split_lines(std::string_view text);
+
+// One motion command replayed through MachineState.
+struct ReplayedMove {
+  gcode::Move move;
+  gcode::MachineState after;
+  std::size_t line_index;  // 0-based line in the text
+};
+std::vector<ReplayedMove> replay_moves(std::string_view text);
+gcode::MachineState replay_state(std::string_view text);
+
+}  // namespace gctest

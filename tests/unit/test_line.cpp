@@ -1,0 +1,89 @@
+#include <catch2/catch.hpp>
+
+#include "gcode/line.hpp"
+
+using gcode::CommandKind;
+using gcode::Line;
+
+TEST_CASE("a plain move", "[line]") {
+  Line l = Line::parse("G1 X10.5 Y-3 E.12345 F1800 ; perimeter");
+  CHECK(l.kind == CommandKind::Standard);
+  CHECK(l.is_g(1));
+  CHECK(l.is_move());
+  REQUIRE(l.word_count() == 4);
+  CHECK(l.find('X')->value == 10.5);
+  CHECK(l.find('Y')->value == -3);
+  CHECK(l.find('E')->raw == ".12345");
+  CHECK(l.find('F')->value == 1800);
+  CHECK(l.comment == "; perimeter");
+  CHECK(l.comment_text() == "perimeter");
+  CHECK(l.code() == "G1 X10.5 Y-3 E.12345 F1800");
+  CHECK_FALSE(l.malformed);
+}
+
+TEST_CASE("what Marlin accepts: packed, lower case, +, spaces, missing zero", "[line]") {
+  Line l = Line::parse("g1x10Y5E.5");
+  CHECK(l.is_g(1));
+  CHECK(l.find('X')->value == 10);
+  CHECK(l.find('Y')->value == 5);
+  CHECK(l.find('E')->value == 0.5);
+  Line s = Line::parse("G1 X +10 Y -2");
+  CHECK(s.find('X')->value == 10);
+  CHECK(s.find('Y')->value == -2);
+  Line e = Line::parse("G1X5E2");  // upper-case E is a word, not an exponent
+  CHECK(e.find('X')->value == 5);
+  CHECK(e.find('E')->value == 2);
+}
+
+TEST_CASE("line numbers, checksums and subcodes", "[line]") {
+  Line l = Line::parse("N123 G1 X1*71");
+  CHECK(l.has_line_number);
+  CHECK(l.line_number == 123);
+  CHECK(l.has_checksum);
+  CHECK(l.checksum == 71);
+  CHECK(l.find('X')->value == 1);
+  Line s = Line::parse("G29.1 Z0.2");
+  CHECK(s.number == 29);
+  CHECK(s.subcode == 1);
+  CHECK_FALSE(s.is_g(29) == false);
+}
+
+TEST_CASE("words without numbers and string arguments", "[line]") {
+  Line h = Line::parse("G28 X Y");
+  REQUIRE(h.word_count() == 2);
+  CHECK_FALSE(h.find('X')->has_value);
+  Line m = Line::parse("M117 Printing X1.5 layer 3; note");
+  CHECK(m.word_count() == 0);
+  CHECK(m.argument == "Printing X1.5 layer 3");
+  CHECK(m.comment == "; note");
+}
+
+TEST_CASE("host commands, macros, comments", "[line]") {
+  CHECK(Line::parse("@pause now").kind == CommandKind::Host);
+  CHECK(Line::parse("@pause now").command == "@pause");
+  Line k = Line::parse("PRINT_START EXTRUDER=210 BED=60");
+  CHECK(k.kind == CommandKind::Extended);
+  CHECK(k.command == "PRINT_START");
+  CHECK(k.argument == "EXTRUDER=210 BED=60");
+  Line c = Line::parse(";LAYER:3");
+  CHECK(c.kind == CommandKind::None);
+  CHECK(c.comment_text() == "LAYER:3");
+  Line p = Line::parse("G1 X1 (inline) Y2");
+  CHECK(p.find('Y')->value == 2);
+  CHECK(p.comment == "(inline)");
+  CHECK(Line::parse("").is_blank());
+  CHECK(Line::parse("   \t").is_blank());
+}
+
+TEST_CASE("malformed lines are flagged, never thrown", "[line]") {
+  CHECK(Line::parse("G1 X1e309").malformed);
+  CHECK(Line::parse("G1 Xnan Y1").malformed);
+  CHECK(Line::parse("G1 X1.2.3").malformed);
+  CHECK(Line::parse("\x01\x02\xff junk").malformed);
+  CHECK(Line::parse("G1 X{foo}").malformed);
+  std::string many = "G1";
+  for (int i = 0; i < 40; ++i) many += " X1";
+  CHECK(Line::parse(many).malformed);
+  std::string huge(10 << 20, 'A');
+  CHECK_NOTHROW(Line::parse(huge));
+}

@@ -1,0 +1,60 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "gcode/number.hpp"
+
+using gcode::parse_number;
+
+TEST_CASE("parse_number reads slicer decimals exactly", "[number]") {
+  double v = 0;
+  CHECK((parse_number("12.345", v) && v == 12.345));
+  CHECK((parse_number("-.8", v) && v == -0.8));
+  CHECK((parse_number("+10", v) && v == 10));
+  CHECK((parse_number(".2", v) && v == 0.2));
+  CHECK((parse_number("5.", v) && v == 5));
+  CHECK((parse_number("7800.000", v) && v == 7800));
+  CHECK((parse_number("0.00001", v) && v == 0.00001));
+  CHECK((parse_number("1e3", v) && v == 1000));
+  CHECK((parse_number("12345678901234567890", v) && v == 12345678901234567890.0));
+}
+
+TEST_CASE("parse_number rejects what is not a number", "[number]") {
+  double v = 0;
+  CHECK_FALSE(parse_number("", v));
+  CHECK_FALSE(parse_number("-", v));
+  CHECK_FALSE(parse_number(".", v));
+  CHECK_FALSE(parse_number("1.2.3", v));
+  CHECK_FALSE(parse_number("12abc", v));
+  CHECK_FALSE(parse_number("nan", v));
+  CHECK_FALSE(parse_number("1e309", v));
+}
+
+TEST_CASE("format_number writes the shortest fixed decimal", "[number]") {
+  char b[gcode::kMaxNumberChars];
+  CHECK(gcode::number_text(12.5, 3, b) == "12.5");
+  CHECK(gcode::number_text(12.0, 3, b) == "12");
+  CHECK(gcode::number_text(-0.0001, 3, b) == "0");
+  CHECK(gcode::number_text(-0.04, 3, b) == "-0.04");
+  CHECK(gcode::number_text(0.1 + 0.2, 5, b) == "0.3");
+  CHECK(gcode::number_text(1234.56789, 2, b) == "1234.57");
+  CHECK(gcode::number_text(1e20, 3, b) == "1000000000000000");
+  CHECK(gcode::number_text(std::nan(""), 3, b) == "0");
+  CHECK(gcode::number_text(0.000005, 5, b) == "0.00001");
+}
+
+TEST_CASE("format then parse round-trips at the given precision", "[number][property]") {
+  char b[gcode::kMaxNumberChars];
+  for (int i = -20000; i <= 20000; i += 7) {
+    double x = i * 0.001;
+    double back = 0;
+    REQUIRE(parse_number(gcode::number_text(x, 3, b), back));
+    REQUIRE(std::fabs(back - x) < 1e-9);
+  }
+}
+
+TEST_CASE("decimals_of counts digits after the point", "[number]") {
+  CHECK(gcode::decimals_of("0.125") == 3);
+  CHECK(gcode::decimals_of("5") == 0);
+  CHECK(gcode::decimals_of("-.80") == 2);
+}
