@@ -281,4 +281,10 @@ void LayerTracker::finish() {
   tail_.clear();
 }
 
+void track_all(LineReader& reader, LayerTracker& tracker) {
+  RawLine raw;
+  while (reader.next(raw)) tracker.push(raw);
+  tracker.finish();
+}
+
 }  // namespace gcode

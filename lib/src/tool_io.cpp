@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
+#include <vector>
 
 #include "gcode/output_buffer.hpp"
 
@@ -33,6 +34,41 @@ InputFile::InputFile(const std::string& path) {
   }
   owned_ = true;
   name_ = path;
+}
+
+void InputFile::make_seekable() {
+  if (::lseek(fd_, 0, SEEK_CUR) >= 0) return;
+  char templ[] = "/tmp/gc-spool-XXXXXX";
+  int tmp = ::mkstemp(templ);
+  if (tmp < 0) throw std::runtime_error(errno_message("temp file"));
+  ::unlink(templ);
+  std::vector<char> buffer(1 << 18);
+  for (;;) {
+    ssize_t n = ::read(fd_, buffer.data(), buffer.size());
+    if (n == 0) break;
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      ::close(tmp);
+      throw std::runtime_error(errno_message(name_));
+    }
+    for (ssize_t done = 0; done < n;) {
+      ssize_t w = ::write(tmp, buffer.data() + done, static_cast<std::size_t>(n - done));
+      if (w < 0) {
+        if (errno == EINTR) continue;
+        ::close(tmp);
+        throw std::runtime_error(errno_message("temp file"));
+      }
+      done += w;
+    }
+  }
+  if (owned_) ::close(fd_);
+  fd_ = tmp;
+  owned_ = true;
+  rewind();
+}
+
+void InputFile::rewind() {
+  if (::lseek(fd_, 0, SEEK_SET) < 0) throw std::runtime_error(errno_message(name_));
 }
 
 InputFile::~InputFile() {

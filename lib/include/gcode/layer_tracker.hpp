@@ -143,4 +143,7 @@ class LayerTracker {
   bool finished_ = false;
 };
 
+// Pushes every line of `reader` through `tracker`, then finishes it.
+void track_all(LineReader& reader, LayerTracker& tracker);
+
 }  // namespace gcode

@@ -16,6 +16,10 @@ class InputFile {
   InputFile& operator=(const InputFile&) = delete;
   int fd() const { return fd_; }
   const std::string& name() const { return name_; }
+  // For tools that must read the input twice (e.g. "the last 3 layers"):
+  // a pipe is copied to an unlinked temp file first. Then rewinds.
+  void make_seekable();
+  void rewind();
 
  private:
   int fd_ = 0;
