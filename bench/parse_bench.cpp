@@ -1,0 +1,168 @@
+// Times the pieces of a full pass through libgcode, one stage per run, so
+// bench/run.sh can set each against `cat` and see where the time goes:
+//
+//   split   LineReader only: block reads and line splitting
+//   copy    split + OutputBuffer: every line written back from its raw bytes
+//   parse   split + Line::parse
+//   state   parse + MachineState::apply
+//   layers  parse + state + LayerTracker (the sink only counts)
+//   full    layers + every line written back: what `gc-layers --extract 1-` does
+//
+// Usage: parse_bench STAGE FILE [OUT]   (OUT defaults to /dev/null)
+// Prints one line of key=value figures. Every stage folds what it computed
+// into a checksum that is printed, so the compiler cannot drop the work.
+#include <fcntl.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <string_view>
+
+#include "gcode/layer_marker.hpp"
+#include "gcode/layer_tracker.hpp"
+#include "gcode/line.hpp"
+#include "gcode/line_reader.hpp"
+#include "gcode/machine_state.hpp"
+#include "gcode/output_buffer.hpp"
+
+namespace {
+
+struct Figures {
+  std::uint64_t lines = 0;
+  std::uint64_t bytes = 0;
+  double check = 0;
+};
+
+Figures split(int in) {
+  Figures f;
+  gcode::LineReader reader(in);
+  gcode::RawLine raw;
+  while (reader.next(raw)) {
+    ++f.lines;
+    f.bytes += raw.size();
+  }
+  return f;
+}
+
+Figures copy(int in, int out) {
+  Figures f;
+  gcode::LineReader reader(in);
+  gcode::OutputBuffer writer(out);
+  gcode::RawLine raw;
+  while (reader.next(raw)) {
+    ++f.lines;
+    writer.write(raw.text);
+    writer.write(raw.ending);
+  }
+  writer.flush();
+  f.bytes = writer.bytes_written();
+  return f;
+}
+
+Figures parse(int in, bool with_state) {
+  Figures f;
+  gcode::LineReader reader(in);
+  gcode::MachineState state;
+  gcode::RawLine raw;
+  std::uint64_t words = 0;
+  while (reader.next(raw)) {
+    ++f.lines;
+    f.bytes += raw.size();
+    gcode::Line line = gcode::Line::parse(raw.text);
+    words += line.word_count();
+    if (with_state) state.apply(line);
+  }
+  f.check = static_cast<double>(words) + state.filament_total;
+  return f;
+}
+
+// Counts what the tracker reports and, in the full stage, writes every line.
+class BenchSink : public gcode::LayerSink {
+ public:
+  explicit BenchSink(gcode::OutputBuffer* writer) : writer_(writer) {}
+  void on_layer(const gcode::LayerInfo& layer, const gcode::MachineState&) override { z_sum += layer.z; }
+  void on_line(const gcode::TrackedLine& line) override {
+    ++lines;
+    bytes += line.raw.size();
+    filament += line.move.filament;
+    if (writer_ != nullptr) {
+      writer_->write(line.raw.text);
+      writer_->write(line.raw.ending);
+    }
+  }
+  std::uint64_t lines = 0;
+  std::uint64_t bytes = 0;
+  double filament = 0;
+  double z_sum = 0;
+
+ private:
+  gcode::OutputBuffer* writer_;
+};
+
+Figures layers(int in, int out, bool write) {
+  gcode::LineReader reader(in);
+  gcode::OutputBuffer writer(out);
+  BenchSink sink(write ? &writer : nullptr);
+  gcode::LayerMarkers markers;
+  gcode::LayerTracker tracker(sink, markers);
+  gcode::RawLine raw;
+  while (reader.next(raw)) tracker.push(raw);
+  tracker.finish();
+  writer.flush();
+  Figures f;
+  f.lines = sink.lines;
+  f.bytes = sink.bytes;
+  f.check = sink.filament + sink.z_sum + tracker.layer_count();
+  return f;
+}
+
+int usage() {
+  std::fputs("usage: parse_bench split|copy|parse|state|layers|full FILE [OUT]\n", stderr);
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 3 || argc > 4) return usage();
+  std::string_view stage = argv[1];
+  int in = ::open(argv[2], O_RDONLY);
+  if (in < 0) {
+    std::fprintf(stderr, "parse_bench: %s: %s\n", argv[2], std::strerror(errno));
+    return 1;
+  }
+  const char* out_path = argc == 4 ? argv[3] : "/dev/null";
+  int out = ::open(out_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (out < 0) {
+    std::fprintf(stderr, "parse_bench: %s: %s\n", out_path, std::strerror(errno));
+    return 1;
+  }
+  auto t0 = std::chrono::steady_clock::now();
+  Figures f;
+  if (stage == "split") {
+    f = split(in);
+  } else if (stage == "copy") {
+    f = copy(in, out);
+  } else if (stage == "parse") {
+    f = parse(in, false);
+  } else if (stage == "state") {
+    f = parse(in, true);
+  } else if (stage == "layers") {
+    f = layers(in, out, false);
+  } else if (stage == "full") {
+    f = layers(in, out, true);
+  } else {
+    return usage();
+  }
+  ::close(out);
+  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  rusage usage{};
+  ::getrusage(RUSAGE_SELF, &usage);
+  std::printf("stage=%s lines=%llu bytes=%llu seconds=%.4f mb_per_s=%.1f maxrss_kb=%ld check=%.6g\n",
+              argv[1], static_cast<unsigned long long>(f.lines), static_cast<unsigned long long>(f.bytes), seconds,
+              static_cast<double>(f.bytes) / 1e6 / seconds, usage.ru_maxrss, f.check);
+  return 0;
+}
