@@ -1,0 +1,48 @@
+# Timing helpers shared by bench/run.sh and bench/parts/*.sh (source this file;
+# run.sh exports its path as GC_BENCH_LIB).
+#
+#   gc_measure OUT CMD [ARGS...]
+#       Runs CMD with standard output to OUT, GC_BENCH_RUNS times (default 3),
+#       and sets GC_SECONDS (the best wall-clock time) and GC_RSS_KB (the peak
+#       resident set size of CMD, largest over the runs; from GNU time).
+#       CMD's standard error is kept back and shown only if CMD fails, in
+#       which case gc_measure returns 1.
+#   gc_row NAME MB_PER_S LINES_PER_S RSS_KB NOTE
+#       Prints one row for the summary table that bench/run.sh prints at the
+#       end ("-" for a figure that does not apply). A part's other output is
+#       shown as it is.
+#   gc_rate BYTES_OR_LINES SECONDS [SCALE]
+#       Prints BYTES_OR_LINES / SECONDS / SCALE with one decimal.
+
+gc_measure() {
+  local out=$1
+  shift
+  local runs=${GC_BENCH_RUNS:-3} best="" rss=0 i t0 t1 s r
+  local timefile
+  timefile=$(mktemp)
+  for ((i = 0; i < runs; i++)); do
+    t0=$(date +%s%N)
+    if ! /usr/bin/time -f %M -o "$timefile" "$@" >"$out" 2>"$timefile.err"; then
+      echo "bench: failed: $*" >&2
+      cat "$timefile.err" >&2
+      rm -f "$timefile" "$timefile.err"
+      return 1
+    fi
+    t1=$(date +%s%N)
+    s=$(((t1 - t0) / 1000))
+    r=$(tail -n 1 "$timefile")
+    if [ -z "$best" ] || [ "$s" -lt "$best" ]; then best=$s; fi
+    if [ "$r" -gt "$rss" ]; then rss=$r; fi
+  done
+  rm -f "$timefile" "$timefile.err"
+  GC_SECONDS=$(awk -v us="$best" 'BEGIN { printf "%.4f", us / 1e6 }')
+  GC_RSS_KB=$rss
+}
+
+gc_rate() {
+  awk -v n="$1" -v s="$2" -v k="${3:-1}" 'BEGIN { if (s > 0) printf "%.1f", n / s / k; else print "-" }'
+}
+
+gc_row() {
+  printf 'BENCH_ROW\t%s\t%s\t%s\t%s\t%s\n' "$1" "$2" "$3" "$4" "${5:-}"
+}
