@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config   # compiler and build
   libcli11-dev libfmt-dev libre2-dev # the library and tools
-  catch2                             # unit and tool tests
+  catch2 nlohmann-json3-dev          # unit and tool tests (JSON reports read back)
   clang                              # libFuzzer targets
   libserialport-dev                  # gc-send: serial ports
   librsvg2-bin libxml2-utils         # tests: render and validate SVG

@@ -70,7 +70,7 @@ bool LayerRange::needs_total() const {
 int LayerRange::highest_named() const {
   int h = 0;
   for (const Span& s : spans_)
-    if (!s.from_end) h = std::max(h, s.first);
+    if (!s.from_end) h = std::max({h, s.first, s.last});
   return h;
 }
 

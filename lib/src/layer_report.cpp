@@ -4,6 +4,8 @@
 
 #include <iterator>
 
+#include "gcode/number.hpp"
+
 namespace gcode {
 
 namespace {
@@ -97,9 +99,10 @@ std::string layer_table_json(const LayerTable& table, const LayerTracker& tracke
   for (const LayerRow& r : table.layers()) {
     out += first ? "\n    {" : ",\n    {";
     first = false;
-    fmt::format_to(std::back_inserter(out), "\"layer\": {}, \"slicer_layer\": {}, \"z\": {:.4f}, \"height\": {:.4f}, ",
-                   r.info.index, r.info.has_slicer_number ? std::to_string(r.info.slicer_number) : "null", r.info.z,
-                   r.info.height);
+    char z[kMaxNumberChars], h[kMaxNumberChars];
+    fmt::format_to(std::back_inserter(out), "\"layer\": {}, \"slicer_layer\": {}, \"z\": {}, \"height\": {}, ",
+                   r.info.index, r.info.has_slicer_number ? std::to_string(r.info.slicer_number) : "null",
+                   number_text(r.info.z, 6, z), number_text(r.info.height, 6, h));
     append_region(out, r);
     fmt::format_to(std::back_inserter(out),
                    ", \"filament_mm\": {:.5f}, \"extruded_mm\": {:.5f}, \"path_mm\": {:.3f}, \"travel_mm\": {:.3f}, "

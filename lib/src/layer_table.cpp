@@ -50,8 +50,10 @@ void LayerTable::on_line(const TrackedLine& t) {
     if (m.extruding) {
       row.extruded += m.filament;
       row.path += m.length;
-      bounds_.add(m.start[kX], m.start[kY], m.start[kZ]);
-      bounds_.add(m.end[kX], m.end[kY], m.end[kZ]);
+      if (t.region == Region::Layer) {
+        bounds_.add(m.start[kX], m.start[kY], m.start[kZ]);
+        bounds_.add(m.end[kX], m.end[kY], m.end[kZ]);
+      }
       if (t.feature >= 0 && std::find(row.features.begin(), row.features.end(), t.feature) == row.features.end())
         row.features.push_back(t.feature);
     } else if (m.travel) {

@@ -287,4 +287,13 @@ void track_all(LineReader& reader, LayerTracker& tracker) {
   tracker.finish();
 }
 
+int count_layers(LineReader& reader, const LayerMarkers& markers) {
+  struct Counter : LayerSink {
+    void on_line(const TrackedLine&) override {}
+  } counter;
+  LayerTracker tracker(counter, markers);
+  track_all(reader, tracker);
+  return tracker.layer_count();
+}
+
 }  // namespace gcode

@@ -172,6 +172,11 @@ int main(int argc, char** argv) {
     if ((!o.extract.empty() || !o.z_range.empty()) && (o.json || o.where > 0))
       throw CLI::ValidationError("--extract", "cutting does not combine with --json or --where");
     if (o.in_place && !o.output.empty()) throw CLI::ValidationError("-o", "-o and -i exclude each other");
+    if (!o.extract.empty()) gcode::LayerRange::parse(o.extract);
+    if (!o.z_range.empty()) gcode::ZRange::parse(o.z_range);
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "gc-layers: %s\n", e.what());
+    return 2;
   } catch (const CLI::ParseError& e) {
     int code = app.exit(e);
     return code == 0 ? 0 : 2;

@@ -145,5 +145,8 @@ class LayerTracker {
 
 // Pushes every line of `reader` through `tracker`, then finishes it.
 void track_all(LineReader& reader, LayerTracker& tracker);
+// Reads `reader` to the end and returns how many layers it holds (for
+// selections counted from the end, such as "the last 3 layers").
+int count_layers(LineReader& reader, const LayerMarkers& markers);
 
 }  // namespace gcode

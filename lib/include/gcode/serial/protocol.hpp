@@ -1,0 +1,65 @@
+#pragma once
+// The text protocol of Marlin-style firmware (also RepRapFirmware, Repetier
+// and Klipper where they differ): numbered lines with an XOR checksum going
+// out, and the printer's answers coming back.
+//
+// Out: "N<n> <command>*<checksum>\n", checksum = XOR of every byte before '*'.
+// In:  "ok [N<n> P<planner free> B<queue free>] [T:... B:...]", "Resend: n" or
+//      "rs n", "Error:...", "echo:busy: processing", "echo:...", "//action:...",
+//      temperature reports "T:210.0 /210.0 B:60.0 /60.0", "wait", "start".
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace gcode::serial {
+
+// XOR of all bytes of `text` (Marlin's and RepRap's line checksum).
+std::uint8_t checksum(std::string_view text);
+
+// Appends "N<number> <command>*<checksum>\n" to `out`.
+void append_numbered_line(std::string& out, long long number, std::string_view command);
+
+enum class ResponseKind : std::uint8_t {
+  Empty,        // a blank line
+  Ok,
+  Resend,       // "Resend: n", "rs n"
+  Error,        // "Error:...", Klipper's "!! ..."
+  Busy,         // "busy: processing" (with or without "echo:")
+  Echo,         // "echo:..." and Klipper's "// ..." messages
+  Action,       // "//action:pause" and friends
+  Temperature,  // an autoreport or M105 answer on its own line
+  Wait,         // Repetier/Marlin "wait" while idle
+  Start,        // the greeting after a reset
+  Capability,   // M115 "Cap:NAME:1" and the FIRMWARE_NAME line
+  Unknown,
+};
+
+enum class ErrorClass : std::uint8_t {
+  None,
+  Resend,       // checksum / line number trouble: a "Resend:" follows
+  Recoverable,  // an unknown command and the like: logged, printing goes on
+  Fatal,        // "Printer halted", "kill()", thermal runaway: stop
+};
+
+struct Response {
+  ResponseKind kind = ResponseKind::Empty;
+  long long line = -1;      // Resend: the line asked for; Ok: the N of ADVANCED_OK
+  int planner_free = -1;    // ADVANCED_OK P
+  int queue_free = -1;      // ADVANCED_OK B
+  bool has_temperature = false;  // "ok T:..." (the answer to M105)
+  ErrorClass error = ErrorClass::None;
+  std::string_view text;    // the line without its prefix (error message, action name, ...)
+};
+
+// Classifies one received line (without its ending). Never fails: anything
+// not recognised is Unknown, and the caller logs it.
+Response parse_response(std::string_view line);
+
+ErrorClass classify_error(std::string_view message);
+
+// The code of a G-code line as it goes to the firmware: comment and blanks
+// gone, an existing "N123 " prefix and "*71" checksum removed (the sender
+// numbers lines itself).
+std::string_view command_for_sending(std::string_view code);
+
+}  // namespace gcode::serial

@@ -1,0 +1,137 @@
+#include <catch2/catch.hpp>
+
+#include "gcode/machine_state.hpp"
+#include "test_support.hpp"
+
+using gcode::kE;
+using gcode::kX;
+using gcode::kY;
+using gcode::kZ;
+
+namespace {
+gcode::Move apply(gcode::MachineState& s, const char* text) { return s.apply(gcode::Line::parse(text)); }
+}  // namespace
+
+TEST_CASE("absolute and relative extrusion count the same filament", "[machine_state]") {
+  gcode::MachineState a;
+  apply(a, "M82");
+  apply(a, "G1 X10 E1");
+  auto m = apply(a, "G1 X20 E1.5");
+  CHECK(m.filament == Approx(0.5));
+  CHECK(m.extruding);
+  gcode::MachineState r;
+  apply(r, "M83");
+  apply(r, "G1 X10 E1");
+  m = apply(r, "G1 X20 E0.5");
+  CHECK(m.filament == Approx(0.5));
+  CHECK(r.filament_total == Approx(1.5));
+}
+
+TEST_CASE("Marlin couples E to G90/G91", "[machine_state]") {
+  gcode::MachineState s;
+  apply(s, "M83");
+  CHECK(s.relative_e);
+  apply(s, "G91");
+  CHECK(s.relative_xyz);
+  CHECK(s.relative_e);
+  apply(s, "G90");
+  CHECK_FALSE(s.relative_e);  // G90 makes E absolute again even after M83
+  apply(s, "G91");
+  apply(s, "M82");
+  CHECK(s.relative_xyz);
+  CHECK_FALSE(s.relative_e);
+}
+
+TEST_CASE("G92 shifts coordinates without moving; filament is unaffected", "[machine_state]") {
+  gcode::MachineState s;
+  apply(s, "G1 X10 Y10 E5");
+  apply(s, "G92 E0");
+  CHECK(s.position[kE] == 0);
+  CHECK(s.machine(kE) == Approx(5));
+  auto m = apply(s, "G1 X20 E1");
+  CHECK(m.filament == Approx(1));
+  CHECK(s.filament_total == Approx(6));
+  apply(s, "G92 X0");
+  CHECK(s.position[kX] == 0);
+  CHECK(s.machine(kX) == Approx(20));
+}
+
+TEST_CASE("inches are converted to mm, F too", "[machine_state]") {
+  gcode::MachineState s;
+  apply(s, "G20");
+  auto m = apply(s, "G1 X1 F60");
+  CHECK(s.position[kX] == Approx(25.4));
+  CHECK(m.feedrate == Approx(60 * 25.4));
+  apply(s, "G21");
+  apply(s, "G1 X1");
+  CHECK(s.position[kX] == Approx(1));
+}
+
+TEST_CASE("G91 relative moves and travel vs extrusion", "[machine_state]") {
+  gcode::MachineState s;
+  apply(s, "G1 X5 Y5 Z1");
+  apply(s, "G91");
+  auto m = apply(s, "G1 X3 Y4");
+  CHECK(m.length == Approx(5));
+  CHECK(m.travel);
+  CHECK(s.position[kX] == Approx(8));
+  m = apply(s, "G1 E-2");
+  CHECK(m.retraction());
+  CHECK_FALSE(m.travel);
+}
+
+TEST_CASE("firmware retraction: bare G10/G11 only", "[machine_state]") {
+  gcode::MachineState s;
+  auto m = apply(s, "G10");
+  CHECK(m.kind == gcode::MoveKind::FirmwareRetract);
+  CHECK(s.firmware_retracted);
+  apply(s, "G11");
+  CHECK_FALSE(s.firmware_retracted);
+  m = apply(s, "G10 P0 S210");  // RepRapFirmware tool temperature
+  CHECK(m.kind == gcode::MoveKind::None);
+  CHECK_FALSE(s.firmware_retracted);
+}
+
+TEST_CASE("arcs: length of I/J and R forms, full circle", "[machine_state][arc]") {
+  gcode::MachineState s;
+  apply(s, "G1 X0 Y0");
+  auto m = apply(s, "G3 X10 Y0 I5 J0 E1");
+  CHECK(m.xy_length == Approx(3.14159265 * 5));
+  m = apply(s, "G2 X10 Y0 I-5 J0");  // start == end: full circle
+  CHECK(m.xy_length == Approx(2 * 3.14159265 * 5));
+  apply(s, "G1 X0 Y0");
+  m = apply(s, "G2 X10 Y10 R10");
+  CHECK(m.xy_length == Approx(3.14159265 * 10 / 2));
+  m = apply(s, "G2 X0 Y0 R-10");  // negative R: the long way
+  CHECK(m.xy_length == Approx(3 * 3.14159265 * 10 / 2));
+}
+
+TEST_CASE("malformed moves are ignored, unknown commands are harmless", "[machine_state]") {
+  gcode::MachineState s;
+  apply(s, "G1 X5");
+  auto m = apply(s, "G1 X1e309 E5");
+  CHECK(m.ignored);
+  CHECK(s.position[kX] == 5);
+  apply(s, "M999 X1");
+  apply(s, "G29.1 X9");
+  apply(s, "FOO_BAR X=1");
+  CHECK(s.position[kX] == 5);
+}
+
+TEST_CASE("temperatures, fan, tools, homing", "[machine_state]") {
+  gcode::MachineState s;
+  apply(s, "M104 S210");
+  apply(s, "M109 R200 T1");
+  apply(s, "M190 S60");
+  apply(s, "M106 S128");
+  apply(s, "T1");
+  CHECK(s.hotend_target[0] == 210);
+  CHECK(s.hotend_target[1] == 200);
+  CHECK(s.bed_target == 60);
+  CHECK(s.fan == 128);
+  CHECK(s.tool == 1);
+  apply(s, "G1 X5 Y5 Z5");
+  apply(s, "G28 Z");
+  CHECK(s.position[kZ] == 0);
+  CHECK(s.position[kX] == 5);
+}
