@@ -52,7 +52,7 @@ void apply_motion(MachineState& s, const Line& line, Move& m) {
       return;
     }
   }
-  m.xy_length = std::hypot(dx, dy);
+  m.xy_length = std::sqrt(dx * dx + dy * dy);  // hypot guards against overflow we cannot have, at 4x the cost
   m.length = dz == 0 ? m.xy_length : std::sqrt(dx * dx + dy * dy + dz * dz);
 }
 
@@ -104,6 +104,22 @@ void apply_m(MachineState& s, const Line& line) {
   }
 }
 
+void track_lift(MachineState& s, Move& m) {
+  if (m.extruding) {
+    s.lifted = false;
+    return;
+  }
+  double z0 = m.start[kZ], z1 = m.end[kZ];
+  if (!s.lifted && z1 > z0) {
+    s.lifted = true;
+    s.lift_base_z = z0;
+    m.z_lift = true;
+  } else if (s.lifted && z1 < z0 && z1 <= s.lift_base_z + 1e-6) {
+    s.lifted = false;
+    m.z_hop_return = true;
+  }
+}
+
 }  // namespace
 
 Move MachineState::apply(const Line& line) {
@@ -133,6 +149,7 @@ Move MachineState::apply(const Line& line) {
       filament_total += m.filament;
       m.extruding = m.filament > 0 && m.xy_length + std::fabs(m.end[kZ] - m.start[kZ]) > 0;
       m.travel = m.filament <= 0 && m.length > 0;
+      track_lift(*this, m);
       return m;
     }
     case 10: case 11:
@@ -144,6 +161,7 @@ Move MachineState::apply(const Line& line) {
     case 20: inches = true; return m;
     case 21: inches = false; return m;
     case 28:
+      lifted = false;
       apply_home(*this, line);
       m.kind = MoveKind::Home;
       m.end = position;
@@ -151,6 +169,7 @@ Move MachineState::apply(const Line& line) {
     case 90: relative_xyz = false; relative_e = false; return m;
     case 91: relative_xyz = true; relative_e = true; return m;
     case 92:
+      if (line.has('Z')) lifted = false;
       apply_set_position(*this, line);
       m.kind = MoveKind::SetPosition;
       m.end = position;

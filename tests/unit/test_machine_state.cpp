@@ -135,3 +135,21 @@ TEST_CASE("temperatures, fan, tools, homing", "[machine_state]") {
   CHECK(s.position[kZ] == 0);
   CHECK(s.position[kX] == 5);
 }
+
+TEST_CASE("Z-hop: a lift that comes back down before extruding", "[machine_state]") {
+  gcode::MachineState s;
+  apply(s, "G1 Z0.2");
+  apply(s, "G1 X10 E1");
+  auto lift = apply(s, "G1 Z0.6");
+  CHECK(lift.z_lift);
+  CHECK(s.lifted);
+  CHECK_FALSE(apply(s, "G1 X20 Y5").z_hop_return);
+  auto back = apply(s, "G1 Z0.2");
+  CHECK(back.z_hop_return);
+  CHECK_FALSE(s.lifted);
+  // A lift followed by extrusion up there was a layer change, not a hop.
+  apply(s, "G1 Z0.4");
+  apply(s, "G1 X0 E2");
+  CHECK_FALSE(s.lifted);
+  CHECK_FALSE(apply(s, "G1 Z0.2").z_hop_return);
+}

@@ -44,6 +44,11 @@ struct Move {
   bool z_changed = false;
   bool is_arc_clockwise = false;
   bool ignored = false;       // a malformed move the state did not apply
+  // Z-hop: a non-extruding move that raises Z is a lift; the non-extruding
+  // move that brings Z back down to where the lift began is the hop's return.
+  // A lift followed by extrusion at the new height was a layer change instead.
+  bool z_lift = false;
+  bool z_hop_return = false;
 
   bool moves_head() const { return length > 0; }
   bool retraction() const { return filament < 0 && length == 0; }
@@ -65,6 +70,8 @@ struct MachineState {
   std::array<double, 8> hotend_target{};  // M104/M109 S per tool
   double bed_target = 0;
   double fan = 0;             // 0..255, M106/M107
+  bool lifted = false;        // Z raised by a non-extruding move, not yet back down or extruded at
+  double lift_base_z = 0;     // the Z before that lift
 
   // Applies one line; returns what it did. Lines that are not motion change
   // modes (G90, M83, ...) and return a Move of kind None.
