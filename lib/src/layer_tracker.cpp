@@ -153,11 +153,16 @@ void LayerTracker::begin_layer(LayerInfo info, std::size_t boundary) {
 }
 
 void LayerTracker::resolve_markers(const View& extrusion) {
+  // Plain fields without initialisers: zeroing 64 CommentInfos on every
+  // extrusion was a quarter of a full pass (bench/run.sh, perf).
   struct Group {
     std::size_t index;
     unsigned kinds;
-    CommentInfo info;
+    bool has_number, has_z, has_height;
+    long number;
+    double z, height;
   };
+  if (tail_.items.empty()) return;  // the common case: extrusion follows extrusion
   // Markers of different kinds in one gap are one layer (PrusaSlicer profiles
   // write ;LAYER_CHANGE and a custom ;LAYER:n); a repeated kind is a new one.
   Group groups[64];
@@ -173,23 +178,23 @@ void LayerTracker::resolve_markers(const View& extrusion) {
           // Dozens of empty layers in one gap: fold the rest into the last one.
           groups[count - 1].kinds = 0;
         } else {
-          groups[count++] = Group{i, 0, CommentInfo{}};
+          groups[count++] = Group{i, 0, false, false, false, 0, 0, 0};
         }
       }
       Group& g = groups[count - 1];
       g.kinds |= kind_bit(c.marker);
-      if (c.has_number && !g.info.has_number) {
-        g.info.has_number = true;
-        g.info.number = c.number;
+      if (c.has_number && !g.has_number) {
+        g.has_number = true;
+        g.number = c.number;
       }
     }
-    if (count > 0 && c.has_z && !groups[count - 1].info.has_z) {
-      groups[count - 1].info.has_z = true;
-      groups[count - 1].info.z = c.z;
+    if (count > 0 && c.has_z && !groups[count - 1].has_z) {
+      groups[count - 1].has_z = true;
+      groups[count - 1].z = c.z;
     }
-    if (count > 0 && c.has_height && !groups[count - 1].info.has_height) {
-      groups[count - 1].info.has_height = true;
-      groups[count - 1].info.height = c.height;
+    if (count > 0 && c.has_height && !groups[count - 1].has_height) {
+      groups[count - 1].has_height = true;
+      groups[count - 1].height = c.height;
     }
   }
   if (count == 0) {
@@ -204,13 +209,13 @@ void LayerTracker::resolve_markers(const View& extrusion) {
     std::size_t from = g == 0 ? first : groups[g].index;
     std::size_t to = last ? items.size() : groups[g + 1].index;
     LayerInfo info;
-    info.has_slicer_number = groups[g].info.has_number;
-    info.slicer_number = groups[g].info.number;
-    info.z = groups[g].info.has_z ? groups[g].info.z
-             : last                ? extrusion.move.start[kZ]
-                                   : items[groups[g].index].after.position[kZ];
+    info.has_slicer_number = groups[g].has_number;
+    info.slicer_number = groups[g].number;
+    info.z = groups[g].has_z ? groups[g].z
+             : last          ? extrusion.move.start[kZ]
+                             : items[groups[g].index].after.position[kZ];
     double previous_z = layers_ > 0 ? layer_z_ : 0;
-    info.height = groups[g].info.has_height ? groups[g].info.height : info.z - previous_z;
+    info.height = groups[g].has_height ? groups[g].height : info.z - previous_z;
     info.empty = !last;
     info.first_line = from < items.size() ? items[from].number : extrusion.raw.number;
     info.offset = from < items.size() ? items[from].offset : extrusion.raw.offset;
