@@ -113,8 +113,12 @@ void Subdivider::warn(std::uint64_t line_number, std::string_view message) {
 void Subdivider::process(const RawLine& raw, const Line& line, const Move& move, const MachineState& after,
                          bool selected) {
   ++stats_.lines;
+  if (!raw.ending.empty()) ending_ = raw.ending == "\r\n" ? "\r\n" : "\n";
   if (line.malformed) {
-    warn(raw.number, "cannot read this line; passed through unchanged");
+    // Firmware-specific M codes with quoted text (Prusa's M862.3 P "MK3S") are
+    // none of our business; an unreadable move or junk is worth a word.
+    if (line.kind != CommandKind::Standard || line.letter == 'G')
+      warn(raw.number, "cannot read this line; passed through unchanged");
   } else if (move.kind == MoveKind::Linear || move.kind == MoveKind::Arc) {
     for (const Word& w : line)
       if (axis_of(w.letter) >= 0 || w.letter == 'I' || w.letter == 'J') precision_.observe_word(w.letter, w.raw);
@@ -255,7 +259,8 @@ void Subdivider::write_pieces(const RawLine& raw, const Line& line, const Plan& 
   std::string_view code = line.code();
   std::size_t code_end = static_cast<std::size_t>(code.data() - raw.text.data()) + code.size();
   std::string_view rest = code.empty() ? std::string_view{} : raw.text.substr(code_end);
-  std::string_view ending = raw.ending.empty() ? std::string_view("\n") : raw.ending;
+  // A last line without a newline still needs one between its pieces: the file's own.
+  std::string_view ending = raw.ending.empty() ? ending_ : raw.ending;
 
   std::array<std::int64_t, 4> done{};  // relative axes: units written so far
   const double n = static_cast<double>(plan.pieces);

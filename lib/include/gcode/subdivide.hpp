@@ -92,6 +92,7 @@ class Subdivider {
   Precision precision_;
   SubdivideStats stats_;
   bool warned_rate_ = false;
+  std::string_view ending_ = "\n";  // the input's line ending ("\n" or "\r\n"), static text
 };
 
 }  // namespace gcode
