@@ -313,7 +313,10 @@ PauseBlock build_pause(const PausePoint& point, const PauseConfig& c) {
   if (s.relative_xyz) r.emplace_back("G91");
   // Always: custom lines or the firmware's own pause routine may have changed it.
   r.push_back(e_mode);
-  if (!s.relative_e) r.push_back("G92 E" + exact_number(s.position[kE], 5));
+  // Absolute E: the file's next E word is a coordinate. Relative E after an
+  // unload/purge: a later switch to M82 (Cura appends one to its end code)
+  // would otherwise start from a shifted coordinate.
+  if (!s.relative_e || e.net() != 0) r.push_back("G92 E" + exact_number(s.position[kE], 5));
   if (s.feedrate > 0) r.push_back("G1 F" + exact_number(s.feedrate, 0));
   block.net_filament = e.net();
   return block;

@@ -33,6 +33,20 @@ constexpr const char* kName = "gc-pause-at";
 constexpr const char* kVersion = "gc-pause-at 0.1.0";
 
 // A request the input cannot meet: exit 1 (usage errors exit 2 via CLI11).
+// CLI11's own range checks print the largest double in full.
+const CLI::Validator kNonNegative(
+    [](std::string& v) {
+      double d = 0;
+      return gcode::parse_number(v, d) && d >= 0 ? std::string() : "must be a number >= 0, not " + v;
+    },
+    "NUMBER>=0");
+const CLI::Validator kPositive(
+    [](std::string& v) {
+      double d = 0;
+      return gcode::parse_number(v, d) && d > 0 ? std::string() : "must be a number > 0, not " + v;
+    },
+    "NUMBER>0");
+
 struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
@@ -233,6 +247,9 @@ class PauseWriter : public gcode::LayerSink {
       c.park_x = has_box ? (box.min_x + box.max_x) / 2 : (park_.limits.bed.min_x + park_.limits.bed.max_x) / 2;
       c.park_y = park_.y;
     }
+    // A park position needs no more than the slicer's 3 decimals.
+    c.park_x = std::round(c.park_x * 1000) / 1000;
+    c.park_y = std::round(c.park_y * 1000) / 1000;
     bool pushes = c.reload > 0 || c.purge > 0 || c.prime > 0;
     if (pushes && has_box && box.contains(c.park_x, c.park_y))
       throw InputError("line " + std::to_string(line) + ": the park position X" + num(c.park_x) + " Y" +
@@ -339,128 +356,137 @@ int main(int argc, char** argv) {
   gcode::PauseConfig c;
   c.message = "Paused at layer {layer}";
 
-  app.add_option("FILE", input, "Input G-code (default or '-': stdin)");
-  auto* o_out = app.add_option("-o,--output", output, "Write to FILE instead of stdout");
+  app.add_option("FILE", input, "Input G-code (default or '-': stdin)")->type_name("FILE");
+  auto* o_out = app.add_option("-o,--output", output, "Write to FILE instead of stdout")->type_name("FILE");
   auto* o_inplace = app.add_flag("-i,--in-place", in_place, "Rewrite FILE in place (only when everything succeeded)");
   o_inplace->excludes(o_out);
 
   const char* where = "Where (at least one; they combine)";
   app.add_option("--before-layer", before_layer,
-                 "Pause before these layers print (1 = first printed layer): 5, 5-9, 5,7,9-12")
+                 "Pause before these layers print (1 = first printed layer): 5, 5-9, 5,7,9-12")->type_name("RANGE")
       ->group(where);
-  app.add_option("--after-layer", after_layer, "Pause once these layers are printed (N = before layer N+1)")
+  app.add_option("--after-layer", after_layer, "Pause once these layers are printed (N = before layer N+1)")->type_name("RANGE")
       ->group(where);
-  app.add_option("--z", heights_text, "Pause before the first layer whose Z is above each height (mm, comma list)")
+  app.add_option("--z", heights_text, "Pause before the first layer whose Z is above each height (mm, comma list)")->type_name("HEIGHTS")
       ->group(where);
-  app.add_option("--every", every, "Pause every N layers (before layers N+1, 2N+1, ...)")
-      ->check(CLI::PositiveNumber)
+  app.add_option("--every", every, "Pause every N layers (before layers N+1, 2N+1, ...)")->type_name("N")
+      ->check(kPositive)
       ->group(where);
-  app.add_option("--layer-marker", marker, "RE2 pattern of the layer comment, for files from other slicers")
+  app.add_option("--layer-marker", marker, "RE2 pattern of the layer comment, for files from other slicers")->type_name("REGEX")
       ->group(where);
   auto* o_dry = app.add_flag("--dry-run", dry_run, "List where each pause goes (layer, Z, line, park) and write no G-code")
                     ->group(where);
   o_dry->excludes(o_inplace);
 
   const char* printer = "Printer";
-  app.add_option("--bed", bed, "Bed size WIDTHxDEPTH in mm (default: from the slicer's comments)")->group(printer);
-  app.add_option("--max-z", max_z, "Highest Z the printer reaches (default: from the slicer's comments; none)")
-      ->check(CLI::PositiveNumber)
+  app.add_option("--bed", bed, "Bed size WIDTHxDEPTH in mm (default: from the slicer's comments)")->type_name("WxD")->group(printer);
+  app.add_option("--max-z", max_z, "Highest Z the printer reaches (default: from the slicer's comments; none)")->type_name("MM")
+      ->check(kPositive)
       ->group(printer);
-  app.add_option("--park", park_text, "Park position X,Y (default: X centre of the print, Y = bed depth - 10)")
+  app.add_option("--park", park_text, "Park position X,Y (default: X centre of the print, Y = bed depth - 10)")->type_name("X,Y")
       ->group(printer);
-  app.add_option("--min-park-z", c.min_park_z, "Raise the head to at least this Z while parked (default: none)")
-      ->check(CLI::NonNegativeNumber)
+  app.add_option("--min-park-z", c.min_park_z, "Raise the head to at least this Z while parked (default: none)")->type_name("MM")
+      ->check(kNonNegative)
       ->group(printer);
 
   const char* pause = "Pause";
   app.add_option("--method", method_text,
-                 "Wait command: M0 M1 M25 M125 M226 M600 M601 @pause PAUSE G4 custom:'GCODE' none")
+                 "Wait command: M0 M1 M25 M125 M226 M600 M601 @pause PAUSE G4 custom:'GCODE' none")->type_name("METHOD")
       ->capture_default_str()
       ->group(pause);
-  auto* o_dwell = app.add_option("--dwell", c.dwell_seconds, "Seconds to wait with --method G4")
+  auto* o_dwell = app.add_option("--dwell", c.dwell_seconds, "Seconds to wait with --method G4")->type_name("SECONDS")
                       ->capture_default_str()
-                      ->check(CLI::PositiveNumber)
+                      ->check(kPositive)
                       ->group(pause);
-  app.add_option("--retract", c.retract, "Retract mm before parking (0 = none; firmware G10 if the file uses it)")
+  app.add_option("--retract", c.retract, "Retract mm before parking (0 = none; firmware G10 if the file uses it)")->type_name("MM")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNonNegative)
       ->group(pause);
-  app.add_option("--retract-speed", c.retract_speed, "Retract speed, mm/s")
+  app.add_option("--retract-speed", c.retract_speed, "Retract speed, mm/s")->type_name("MM/S")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber)
+      ->check(kPositive)
       ->group(pause);
-  app.add_option("--unretract-speed", c.unretract_speed, "Unretract speed, mm/s")
+  app.add_option("--unretract-speed", c.unretract_speed, "Unretract speed, mm/s")->type_name("MM/S")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber)
+      ->check(kPositive)
       ->group(pause);
-  app.add_option("--lift", c.lift, "Lift mm above the highest printed Z (capped at --max-z)")
+  app.add_option("--lift", c.lift, "Lift mm above the highest printed Z (capped at --max-z)")->type_name("MM")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNonNegative)
       ->group(pause);
-  app.add_option("--z-speed", c.z_speed, "Z speed, mm/s")->capture_default_str()->check(CLI::PositiveNumber)->group(pause);
-  app.add_option("--travel-speed", c.travel_speed, "Travel speed to and from the park position, mm/s")
+  app.add_option("--z-speed", c.z_speed, "Z speed, mm/s")->type_name("MM/S")->capture_default_str()->check(kPositive)->group(pause);
+  app.add_option("--travel-speed", c.travel_speed, "Travel speed to and from the park position, mm/s")->type_name("MM/S")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber)
+      ->check(kPositive)
       ->group(pause);
   app.add_flag("--wait-moves", c.wait_for_moves, "Send M400 (finish moves) before the wait")->group(pause);
-  auto* o_standby = app.add_option("--standby-temp", standby, "Hotend temperature while waiting (M104; default: unchanged)")
-                        ->check(CLI::NonNegativeNumber)
+  auto* o_standby = app.add_option("--standby-temp", standby, "Hotend temperature while waiting (M104; default: unchanged)")->type_name("C")
+                        ->check(kNonNegative)
                         ->group(pause);
   app.add_option("--resume-temp", c.resume_temp,
-                 "Hotend temperature to resume at (default: the file's last M104/M109 target)")
-      ->check(CLI::PositiveNumber)
+                 "Hotend temperature to resume at (default: the file's last M104/M109 target)")->type_name("C")
+      ->check(kPositive)
       ->group(pause);
   app.add_flag("--no-heat-wait", no_heat_wait, "Resume with M104 (do not wait for the temperature) instead of M109")
       ->group(pause);
   app.add_option("--message", c.message,
-                 "Text shown while paused (M0/M1 text, else M117); {layer} and {z} expand; '' = none")
+                 "Text shown while paused (M0/M1 text, else M117); {layer} and {z} expand; '' = none")->type_name("TEXT")
       ->capture_default_str()
       ->group(pause);
-  app.add_option("--host-message", c.host_message, "Text sent to the host with M118 (default: none)")->group(pause);
+  app.add_option("--host-message", c.host_message, "Text sent to the host with M118 (default: none)")->type_name("TEXT")->group(pause);
   app.add_flag("--beep", c.beep, "Beep (M300) when pausing")->group(pause);
-  app.add_option("--beep-ms", c.beep_ms, "Beep length, ms")->capture_default_str()->check(CLI::PositiveNumber)->group(pause);
-  app.add_option("--beep-hz", c.beep_hz, "Beep pitch, Hz")->capture_default_str()->check(CLI::PositiveNumber)->group(pause);
+  app.add_option("--beep-ms", c.beep_ms, "Beep length, ms")->type_name("MS")->capture_default_str()->check(kPositive)->group(pause);
+  app.add_option("--beep-hz", c.beep_hz, "Beep pitch, Hz")->type_name("HZ")->capture_default_str()->check(kPositive)->group(pause);
   app.add_option("--stepper-hold", c.stepper_hold,
-                 "Keep the steppers on for this many seconds while waiting (M84 S; default: firmware's)")
-      ->check(CLI::PositiveNumber)
+                 "Keep the steppers on for this many seconds while waiting (M84 S; default: firmware's)")->type_name("SECONDS")
+      ->check(kPositive)
       ->group(pause);
-  app.add_option("--unload", c.unload, "Unload this much filament at the park position before the wait (mm)")
-      ->check(CLI::NonNegativeNumber)
+  app.add_option("--unload", c.unload, "Unload this much filament at the park position before the wait (mm)")->type_name("MM")
+      ->check(kNonNegative)
       ->group(pause);
-  app.add_option("--unload-speed", c.unload_speed, "Unload speed, mm/s")
+  app.add_option("--unload-speed", c.unload_speed, "Unload speed, mm/s")->type_name("MM/S")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber)
+      ->check(kPositive)
       ->group(pause);
-  app.add_option("--reload", c.reload, "Load this much filament at the park position after the wait (mm)")
-      ->check(CLI::NonNegativeNumber)
+  app.add_option("--reload", c.reload, "Load this much filament at the park position after the wait (mm)")->type_name("MM")
+      ->check(kNonNegative)
       ->group(pause);
-  app.add_option("--reload-speed", c.reload_speed, "Reload speed, mm/s")
+  app.add_option("--reload-speed", c.reload_speed, "Reload speed, mm/s")->type_name("MM/S")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber)
+      ->check(kPositive)
       ->group(pause);
-  app.add_option("--purge", c.purge, "Purge this much filament at the park position after the wait (mm)")
-      ->check(CLI::NonNegativeNumber)
+  app.add_option("--purge", c.purge, "Purge this much filament at the park position after the wait (mm)")->type_name("MM")
+      ->check(kNonNegative)
       ->group(pause);
-  app.add_option("--purge-speed", c.purge_speed, "Purge speed, mm/s")
+  app.add_option("--purge-speed", c.purge_speed, "Purge speed, mm/s")->type_name("MM/S")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber)
+      ->check(kPositive)
       ->group(pause);
-  app.add_option("--prime", c.prime, "Extra prime at the park position before returning (mm)")
-      ->check(CLI::NonNegativeNumber)
+  app.add_option("--prime", c.prime, "Extra prime at the park position before returning (mm)")->type_name("MM")
+      ->check(kNonNegative)
       ->group(pause);
-  app.add_option("--prime-speed", c.prime_speed, "Prime speed, mm/s")
+  app.add_option("--prime-speed", c.prime_speed, "Prime speed, mm/s")->type_name("MM/S")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber)
+      ->check(kPositive)
       ->group(pause);
-  app.add_option("--before", before_text, "G-code (a file, or text with \\n between lines) just before the wait")
+  app.add_option("--before", before_text, "G-code (a file, or text with \\n between lines) just before the wait")->type_name("GCODE")
       ->group(pause);
-  app.add_option("--after", after_text, "G-code (a file, or text with \\n between lines) just after the wait")
+  app.add_option("--after", after_text, "G-code (a file, or text with \\n between lines) just after the wait")->type_name("GCODE")
       ->group(pause);
 
   app.add_flag("-q,--quiet", quiet, "Only errors");
   app.add_flag("-v,--verbose", verbose, "Report each pause on stderr");
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "%s: %s\n", kName, e.what());
+    return 2;
+  }
 
   return gcode::run_tool(kName, [&]() -> int {
     Where w;
