@@ -55,10 +55,11 @@ void LayerTracker::push(const RawLine& raw) {
     if (info.is_type) feature_ = feature_id(info.type);
   }
   // The state just before a held run starts is what a sink sees at a boundary
-  // placed on the run's first line.
+  // placed on the run's first line. Only hold() reads `before`, and only for
+  // a run's first line, so before_tail_ is the right thing to pass.
   if (mode_ != LayerMode::Undecided && tail_.items.empty()) before_tail_ = state_;
   Move move = state_.apply(line);
-  step(View{raw, line, move, state_, feature_, info}, state_);
+  step(View{raw, line, move, state_, feature_, info}, before_tail_);
 }
 
 void LayerTracker::step(const View& v, const MachineState& before) {
@@ -97,7 +98,7 @@ void LayerTracker::step(const View& v, const MachineState& before) {
 }
 
 void LayerTracker::hold(const View& v, const MachineState& before) {
-  if (tail_.items.empty()) before_tail_ = before;
+  if (tail_.items.empty() && &before != &before_tail_) before_tail_ = before;
   Item item;
   item.text_pos = tail_.add(v.raw);
   item.text_len = static_cast<std::uint32_t>(v.raw.text.size());

@@ -1,5 +1,9 @@
 #include "gcode/line.hpp"
 
+#include <cstdint>
+#include <cstring>
+#include <new>
+
 #include "gcode/number.hpp"
 
 namespace gcode {
@@ -30,6 +34,48 @@ std::size_t number_length(const char* p, const char* end) {
   return static_cast<std::size_t>(q - p);
 }
 
+constexpr double kPow10[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
+
+// Scans the number text starting at p (the extent number_length gives) and
+// reads its value on the way: one pass instead of two for the plain decimals
+// slicers write. Anything else (an exponent, a second point, 16 or more
+// digits) goes to parse_number, so values are the same bit for bit.
+// Returns false when the text is no finite number. The fast path needs no
+// finiteness test, which keeps the division off the critical path.
+bool scan_number(const char* p, const char* end, std::string_view& raw, double& value) {
+  const char* q = p;
+  bool negative = false;
+  if (q != end && (*q == '-' || *q == '+')) {
+    negative = *q == '-';
+    ++q;
+  }
+  std::uint64_t mantissa = 0;
+  int digits = 0, points = 0, fraction_digits = 0;
+  for (; q != end; ++q) {
+    unsigned d = static_cast<unsigned char>(*q) - static_cast<unsigned>('0');
+    if (d <= 9) {
+      mantissa = mantissa * 10 + d;
+      ++digits;
+      fraction_digits += points;
+    } else if (*q == '.') {
+      ++points;
+    } else {
+      break;
+    }
+  }
+  if (q != end && *q == 'e') {
+    std::size_t len = number_length(p, end);
+    raw = std::string_view(p, len);
+    return parse_number(raw, value) && value - value == 0;
+  }
+  raw = std::string_view(p, static_cast<std::size_t>(q - p));
+  if (digits == 0 || points > 1) return false;
+  if (digits > 15) return parse_number(raw, value) && value - value == 0;
+  double v = static_cast<double>(mantissa) / kPow10[fraction_digits];
+  value = negative ? -v : v;
+  return true;
+}
+
 std::string_view trim(std::string_view s) {
   while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
   while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
@@ -50,7 +96,7 @@ bool takes_string_argument(char letter, int number) {
 
 void Line::add_word(const Word& w) {
   if (count_ < kMaxWords) {
-    words_[count_++] = w;
+    ::new (&words_.at[count_++]) Word(w);
   } else {
     malformed = true;
   }
@@ -84,11 +130,9 @@ Line Line::parse(std::string_view text) {
   while (p != end && is_space(*p)) ++p;
   // A ';' comment ends the code; find it once (M117 messages cannot hold ';').
   const char* code_end = end;
-  for (const char* q = p; q != end; ++q) {
-    if (*q == ';') {
-      code_end = q;
-      break;
-    }
+  if (p != end) {
+    if (const void* semi = std::memchr(p, ';', static_cast<std::size_t>(end - p)); semi != nullptr)
+      code_end = static_cast<const char*>(semi);
   }
   if (code_end != end) {
     line.comment = std::string_view(code_end, static_cast<std::size_t>(end - code_end));
@@ -204,11 +248,10 @@ Line Line::parse(std::string_view text) {
     const char* value_start = p;
     while (value_start != code_end && (*value_start == ' ' || *value_start == '\t')) ++value_start;
     if (value_start != code_end && starts_number(*value_start)) {
-      std::size_t len = number_length(value_start, code_end);
-      w.raw = std::string_view(value_start, len);
-      p = value_start + len;
       double v = 0;
-      if (parse_number(w.raw, v) && v - v == 0) {
+      bool ok = scan_number(value_start, code_end, w.raw, v);
+      p = value_start + w.raw.size();
+      if (ok) {
         w.has_value = true;
         w.value = v;
       } else {

@@ -23,9 +23,23 @@ bool is_firmware_retraction(const Line& line) {
 
 void apply_motion(MachineState& s, const Line& line, Move& m) {
   double scale = s.inches ? kInch : 1.0;
-  if (const Word* f = line.find('F'); f != nullptr && f->has_value && f->value > 0) s.feedrate = f->value * scale;
+  // One pass over the words instead of a find() per letter (this runs for
+  // most lines of a file); the first word of a letter counts, as with find().
+  const Word* axis[4] = {};
+  const Word* f = nullptr;
+  for (const Word& w : line) {
+    switch (w.letter) {
+      case 'X': if (axis[kX] == nullptr) axis[kX] = &w; break;
+      case 'Y': if (axis[kY] == nullptr) axis[kY] = &w; break;
+      case 'Z': if (axis[kZ] == nullptr) axis[kZ] = &w; break;
+      case 'E': if (axis[kE] == nullptr) axis[kE] = &w; break;
+      case 'F': if (f == nullptr) f = &w; break;
+      default: break;
+    }
+  }
+  if (f != nullptr && f->has_value && f->value > 0) s.feedrate = f->value * scale;
   for (int a = 0; a < 4; ++a) {
-    const Word* w = line.find(kAxisLetters[a]);
+    const Word* w = axis[a];
     if (w == nullptr || !w->has_value) continue;
     double v = w->value * scale;
     bool relative = a == kE ? s.relative_e : s.relative_xyz;

@@ -137,3 +137,33 @@ TEST_CASE("no extrusion: everything is start code, no crash", "[layer_tracker]")
   CHECK(r.lines.size() == 3);
   CHECK(track("").lines.empty());
 }
+
+TEST_CASE("the state a sink gets at a boundary is the state before the layer's first line", "[layer_tracker]") {
+  // Every layer change here is a bare Z move right after an extrusion, so the
+  // boundary is the first held line; the fourth one is decided after the
+  // tracker left its undecided phase (a different code path).
+  struct BeforeZ : gcode::LayerSink {
+    std::vector<double> before_z, first_start_z;
+    bool pending = false;
+    void on_layer(const gcode::LayerInfo&, const gcode::MachineState& before) override {
+      before_z.push_back(before.position[gcode::kZ]);
+      pending = true;
+    }
+    void on_line(const gcode::TrackedLine& t) override {
+      if (pending) first_start_z.push_back(t.move.start[gcode::kZ]);
+      pending = false;
+    }
+  } sink;
+  std::string text =
+      "G28\nG1 Z0.2\nG1 X10 E1\nG1 X20 E2\nG1 Z0.4\nG1 X10 E3\nG1 Z0.6\nG1 X20 E4\nG1 Z0.8\nG1 X30 E5\n"
+      "G1 Z1.0\nG1 X40 E6\n";
+  gcode::LayerMarkers markers;
+  gcode::LayerTracker tracker(sink, markers);
+  gcode::MemoryLineSplitter split(text);
+  gcode::RawLine raw;
+  while (split.next(raw)) tracker.push(raw);
+  tracker.finish();
+  REQUIRE(sink.before_z.size() == 5);
+  CHECK(sink.before_z == sink.first_start_z);
+  CHECK(sink.before_z.back() == Approx(0.8));
+}
