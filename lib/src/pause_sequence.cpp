@@ -1,6 +1,7 @@
 #include "gcode/pause_sequence.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cctype>
 #include <cmath>
 #include <stdexcept>
@@ -23,6 +24,11 @@ std::string exact_number(double value, int decimals) {
     double back = 0;
     if (parse_number(std::string_view(buffer, n), back) && back == value) return std::string(buffer, n);
   }
+  // A sum of relative moves (0.1 + 0.2) needs all its digits: the shortest
+  // fixed notation that reads back exactly (never an exponent).
+  char wide[400];
+  auto res = std::to_chars(wide, wide + sizeof wide, value, std::chars_format::fixed);
+  if (res.ec == std::errc()) return std::string(wide, res.ptr);
   return std::string(buffer, format_number(value, 9, buffer));
 }
 
