@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets with clang (ASan + UBSan) in build-fuzz and
+# fuzzes the whole pipeline for SECONDS (default 30) from a seed corpus: cuts
+# of every fixture (the start, a layer change, the middle, the end) and edge
+# cases (CRLF, no final newline, NUL bytes, a very long line, a lone CR,
+# packed words, checksums). Exits non-zero on a crash, a leak, a sanitizer
+# report or a failed check; the input that did it is left in
+# build-fuzz/artifacts/.
+#
+#   fuzz/run.sh [SECONDS]
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+seconds=${1:-30}
+build=$root/build-fuzz
+seeds=$root/fuzz/corpus-run/seeds
+work=$root/fuzz/corpus-run/work
+
+if ! command -v clang++ >/dev/null; then
+  echo "fuzz: clang++ not found (scripts/install-deps.sh installs it)" >&2
+  exit 1
+fi
+CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGCODE_FUZZ=ON \
+  -DGCODE_WERROR=ON -DGCODE_TESTS=OFF -DGCODE_BENCH=OFF >/dev/null
+cmake --build "$build" -j"$(nproc)" --target fuzz_pipeline >/dev/null
+
+# Seeds: rebuilt every run so they follow the fixtures.
+rm -rf "$seeds"
+mkdir -p "$seeds" "$work" "$build/artifacts"
+for f in "$root"/tests/fixtures/*.gcode; do
+  name=$(basename "$f" .gcode)
+  size=$(stat -c %s "$f")
+  head -c 3000 "$f" >"$seeds/$name.start"
+  tail -c 3000 "$f" >"$seeds/$name.end"
+  head -c $((size / 2 + 3000)) "$f" | tail -c 3000 >"$seeds/$name.middle"
+  # Around the second layer marker of any slicer.
+  line=$(grep -n -m2 -E '^;LAYER|^; CHANGE_LAYER|^; layer [0-9]' "$f" | tail -n 1 | cut -d: -f1 || true)
+  if [ -n "$line" ]; then
+    sed -n "$((line > 40 ? line - 40 : 1)),$((line + 80))p" "$f" >"$seeds/$name.layer"
+  fi
+done
+printf ';LAYER_CHANGE\r\n;Z:0.2\r\nG1 Z.2 F900\r\nG1 X10 Y10 E1.5\r\n;LAYER_CHANGE\r\n;Z:0.4\r\nG1 Z.4\r\nG1 X0 E2\r\n' >"$seeds/crlf"
+printf 'G28\nG1 Z0.2\nG1 X10 E1\nG1 Z0.4\nG1 X0 E2' >"$seeds/no-final-newline"
+printf 'G1 X1\0Y2 E\0.5\n\0\0\nG1 Z0.3 E1\n;\0comment\n' >"$seeds/nul-bytes"
+{ printf 'G1 X1 E1 ; '; head -c 60000 /dev/zero | tr '\0' 'x'; printf '\nG1 Z1\nG1 X2 E2\n'; } >"$seeds/long-line"
+printf 'G1 X1\rY2\r\r\nG1 X2 E1\r\r\n\r\n\n' >"$seeds/lone-cr"
+printf 'g1x10y5e.5\nG1X-.2Y+3E1e2\nN12 G1 X1 E2*71\nG91\nG1 E-1\nG90\nM83\nG92 E0\nG20\nG1 X1 E.1\nG21\nG2 X10 Y0 I5 J0 E3\nG3 X0 Y0 R5 E4\nG10\nG11\nT1\nM104 S200 T1\n(comment) G1 X5 (inline) E5\n' >"$seeds/packed-and-modes"
+printf ';LAYER:0\nG0 Z0.2\nG1 X1 E1\n;LAYER:1\n;LAYER:2\nG0 Z0.6\nG1 X2 E2\n; layer 3, Z = 0.8\nG1 Z0.8\nG1 X3 E3\n; CHANGE_LAYER\n; Z_HEIGHT: 1.0\nG1 Z1\nG1 X4 E4\n' >"$seeds/markers"
+
+echo "fuzz: fuzz_pipeline for ${seconds}s from $(ls "$seeds" | wc -l) seeds" >&2
+cd "$build/artifacts"
+# Seeds first, then the corpus the fuzzer grows (kept between runs, gitignored).
+"$build/bin/fuzz_pipeline" -max_total_time="$seconds" -max_len=65536 -timeout=20 -rss_limit_mb=2048 \
+  -print_final_stats=1 -artifact_prefix="$build/artifacts/" "$work" "$seeds" 2>"$build/fuzz.log" || {
+  status=$?
+  tail -n 60 "$build/fuzz.log" >&2
+  echo "fuzz: FAILED (exit $status); reproduce with $build/bin/fuzz_pipeline $build/artifacts/<crash-file>" >&2
+  exit 1
+}
+grep -E '^stat::number_of_executed_units|^stat::peak_rss_mb' "$build/fuzz.log" | sed 's/^/fuzz: /' >&2 || true
+echo "fuzz: no crash in ${seconds}s" >&2
