@@ -38,6 +38,23 @@ std::size_t LayerTracker::Held::add(const RawLine& raw) {
   return pos;
 }
 
+// Built in place: an Item is a few hundred bytes and a third of the lines of
+// a typical file are held.
+void LayerTracker::keep(Held& held, const View& v) {
+  std::size_t pos = held.add(v.raw);
+  Item& item = held.items.emplace_back();
+  item.text_pos = pos;
+  item.text_len = static_cast<std::uint32_t>(v.raw.text.size());
+  item.ending_len = static_cast<std::uint8_t>(v.raw.ending.size());
+  item.number = v.raw.number;
+  item.offset = v.raw.offset;
+  item.after = v.after;
+  item.move = v.move;
+  item.feature = v.feature;
+  item.marker = v.info;
+  item.marker.type = {};
+}
+
 LayerTracker::LayerTracker(LayerSink& sink, const LayerMarkers& markers) : sink_(sink), markers_(markers) {}
 
 int LayerTracker::feature_id(std::string_view name) {
@@ -64,18 +81,7 @@ void LayerTracker::push(const RawLine& raw) {
 
 void LayerTracker::step(const View& v, const MachineState& before) {
   if (mode_ == LayerMode::Undecided) {
-    Item item;
-    item.text_pos = pending_.add(v.raw);
-    item.text_len = static_cast<std::uint32_t>(v.raw.text.size());
-    item.ending_len = static_cast<std::uint8_t>(v.raw.ending.size());
-    item.number = v.raw.number;
-    item.offset = v.raw.offset;
-    item.after = v.after;
-    item.move = v.move;
-    item.feature = v.feature;
-    item.marker = v.info;
-    item.marker.type = {};
-    pending_.items.push_back(item);
+    keep(pending_, v);
     if (v.info.marker != MarkerKind::None) {
       resolve_undecided(LayerMode::Markers);
     } else if (v.move.extruding) {
@@ -99,18 +105,7 @@ void LayerTracker::step(const View& v, const MachineState& before) {
 
 void LayerTracker::hold(const View& v, const MachineState& before) {
   if (tail_.items.empty() && &before != &before_tail_) before_tail_ = before;
-  Item item;
-  item.text_pos = tail_.add(v.raw);
-  item.text_len = static_cast<std::uint32_t>(v.raw.text.size());
-  item.ending_len = static_cast<std::uint8_t>(v.raw.ending.size());
-  item.number = v.raw.number;
-  item.offset = v.raw.offset;
-  item.after = v.after;
-  item.move = v.move;
-  item.feature = v.feature;
-  item.marker = v.info;
-  item.marker.type = {};
-  tail_.items.push_back(item);
+  keep(tail_, v);
   if (tail_.arena.size() > kTailBytes) {
     emit_tail(0, tail_.items.size());
     tail_.clear();

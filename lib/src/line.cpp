@@ -49,18 +49,24 @@ bool scan_number(const char* p, const char* end, std::string_view& raw, double& 
     negative = *q == '-';
     ++q;
   }
+  // Integer digits, then at most one point and the fraction digits.
   std::uint64_t mantissa = 0;
-  int digits = 0, points = 0, fraction_digits = 0;
-  for (; q != end; ++q) {
-    unsigned d = static_cast<unsigned char>(*q) - static_cast<unsigned>('0');
-    if (d <= 9) {
+  const char* int_start = q;
+  for (unsigned d; q != end && (d = static_cast<unsigned char>(*q) - unsigned{'0'}) <= 9; ++q)
+    mantissa = mantissa * 10 + d;
+  int digits = static_cast<int>(q - int_start);
+  int points = 0, fraction_digits = 0;
+  if (q != end && *q == '.') {
+    points = 1;
+    const char* frac_start = ++q;
+    for (unsigned d; q != end && (d = static_cast<unsigned char>(*q) - unsigned{'0'}) <= 9; ++q)
       mantissa = mantissa * 10 + d;
-      ++digits;
-      fraction_digits += points;
-    } else if (*q == '.') {
-      ++points;
-    } else {
-      break;
+    fraction_digits = static_cast<int>(q - frac_start);
+    digits += fraction_digits;
+    // A second point ("1.2.3"): the text runs on like number_length says.
+    while (q != end && (*q == '.' || (*q >= '0' && *q <= '9'))) {
+      points += *q == '.';
+      ++q;
     }
   }
   if (q != end && *q == 'e') {

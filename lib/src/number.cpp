@@ -77,14 +77,15 @@ bool parse_number(std::string_view text, double& value) {
 }
 
 int decimals_of(std::string_view number_text) {
-  auto point = number_text.find('.');
-  if (point == std::string_view::npos) return 0;
-  int n = 0;
-  for (std::size_t i = point + 1; i < number_text.size(); ++i) {
-    if (number_text[i] < '0' || number_text[i] > '9') break;
-    ++n;
-  }
-  return n;
+  // A plain loop: numbers are a few characters, and find() costs a memchr
+  // call per word (gc-layers asks for every word of every line).
+  const char* p = number_text.data();
+  const char* end = p + number_text.size();
+  while (p != end && *p != '.') ++p;
+  if (p == end) return 0;
+  const char* first = ++p;
+  while (p != end && *p >= '0' && *p <= '9') ++p;
+  return static_cast<int>(p - first);
 }
 
 std::size_t format_number(double value, int decimals, char* out) {

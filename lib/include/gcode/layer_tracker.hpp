@@ -114,6 +114,7 @@ class LayerTracker {
   };
   struct View;  // an item and where its text lives
 
+  static void keep(Held& held, const View& v);
   void step(const View& v, const MachineState& before);
   void hold(const View& v, const MachineState& before);
   void resolve_undecided(LayerMode mode);
