@@ -227,8 +227,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "gc-subdivide: %s\n", e.what());
     return 2;
   } catch (const CLI::ParseError& e) {
-    int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    std::fprintf(stderr, "gc-subdivide: %s (see --help)\n", e.what());
+    return 2;
   }
   return gcode::run_tool("gc-subdivide", [&] { return run(o); });
 }
