@@ -88,38 +88,74 @@ int decimals_of(std::string_view number_text) {
   return static_cast<int>(p - first);
 }
 
-std::size_t format_number(double value, int decimals, char* out) {
+std::int64_t to_scaled(double value, int decimals) {
   if (decimals < 0) decimals = 0;
   if (decimals > 9) decimals = 9;
   if (!(value == value)) value = 0;  // NaN never reaches a printer as text
   if (value > 1e15) value = 1e15;
   if (value < -1e15) value = -1e15;
-  std::int64_t scaled = std::llround(value * kPow10[decimals]);
-  char* p = out;
-  if (scaled < 0) {
-    *p++ = '-';
-    scaled = -scaled;
+  double x = value * kPow10[decimals];
+  if (x > 9e18) x = 9e18;  // 1e15 at 9 decimals would not fit an int64
+  if (x < -9e18) x = -9e18;
+  // llround without the libm call (a hot spot when tools write millions of
+  // numbers): truncate, then x - t is exact below 2^52, so the half-away-from-
+  // zero rule is applied to the true remainder.
+  auto scaled = static_cast<std::int64_t>(x);
+  double rest = x - static_cast<double>(scaled);
+  if (rest >= 0.5) {
+    ++scaled;
+  } else if (rest <= -0.5) {
+    --scaled;
   }
-  std::int64_t unit = kPow10Int[decimals];
-  std::int64_t whole = scaled / unit;
-  std::int64_t fraction = scaled % unit;
+  return scaled;
+}
+
+std::size_t format_number(double value, int decimals, char* out) {
+  return format_scaled(to_scaled(value, decimals), decimals, out);
+}
+
+namespace {
+
+// One instance per precision, so every division is by a constant (a multiply).
+template <int D>
+char* write_scaled(std::uint64_t magnitude, char* p) {
+  constexpr auto unit = static_cast<std::uint64_t>(kPow10Int[D]);
+  std::uint64_t whole = magnitude / unit;
+  std::uint64_t fraction = magnitude % unit;
   p = std::to_chars(p, p + 24, whole).ptr;
-  if (fraction != 0) {
-    *p++ = '.';
-    // Zero-padded to `decimals` digits, then trailing zeros dropped.
-    char digits[16];
-    for (int i = decimals - 1; i >= 0; --i) {
-      digits[i] = static_cast<char>('0' + fraction % 10);
-      fraction /= 10;
+  if constexpr (D > 0) {
+    if (fraction != 0) {
+      *p++ = '.';
+      // All D digits zero-padded, then the trailing zeros cut off.
+      for (int i = D - 1; i >= 0; --i) {
+        p[i] = static_cast<char>('0' + fraction % 10);
+        fraction /= 10;
+      }
+      int len = D;
+      while (p[len - 1] == '0') --len;
+      p += len;
     }
-    int len = decimals;
-    while (len > 0 && digits[len - 1] == '0') --len;
-    std::memcpy(p, digits, static_cast<std::size_t>(len));
-    p += len;
   }
-  if (p - out == 2 && out[0] == '-' && out[1] == '0') {
-    out[0] = '0';
-    return 1;
+  return p;
+}
+
+}  // namespace
+
+std::size_t format_scaled(std::int64_t units, int decimals, char* out) {
+  char* p = out;
+  std::uint64_t magnitude = units < 0 ? 0 - static_cast<std::uint64_t>(units) : static_cast<std::uint64_t>(units);
+  if (units < 0) *p++ = '-';
+  switch (decimals <= 0 ? 0 : decimals >= 9 ? 9 : decimals) {
+    case 0: p = write_scaled<0>(magnitude, p); break;
+    case 1: p = write_scaled<1>(magnitude, p); break;
+    case 2: p = write_scaled<2>(magnitude, p); break;
+    case 3: p = write_scaled<3>(magnitude, p); break;
+    case 4: p = write_scaled<4>(magnitude, p); break;
+    case 5: p = write_scaled<5>(magnitude, p); break;
+    case 6: p = write_scaled<6>(magnitude, p); break;
+    case 7: p = write_scaled<7>(magnitude, p); break;
+    case 8: p = write_scaled<8>(magnitude, p); break;
+    default: p = write_scaled<9>(magnitude, p); break;
   }
   return static_cast<std::size_t>(p - out);
 }

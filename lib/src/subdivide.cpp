@@ -188,7 +188,7 @@ bool Subdivider::plan_move(const RawLine& raw, const Line& line, const Move& mov
       double amount = p.raw.empty() ? 0.0 : line.value_or(letter, 0);
       double units = amount * kPow10[p.decimals];
       if (!(std::fabs(units) < 9e15)) return false;
-      p.total = std::llround(units);
+      p.total = to_scaled(amount, p.decimals);
     }
     if (a != kE && (p.write || arc)) finest = std::min(finest, p.decimals);
   }
@@ -297,11 +297,11 @@ void Subdivider::write_pieces(const RawLine& raw, const Line& line, const Plan& 
           double at = ax.start + (ax.end - ax.start) * t;
           if (plan.arc && a == kX) at = cx;
           if (plan.arc && a == kY) at = cy;
-          target = std::llround((at - ax.start) * kPow10[ax.decimals]);
+          target = to_scaled(at - ax.start, ax.decimals);
         }
         std::int64_t step = target - done[static_cast<std::size_t>(a)];
         done[static_cast<std::size_t>(a)] = target;
-        p += format_number(static_cast<double>(step) / kPow10[ax.decimals], ax.decimals, p);
+        p += format_scaled(step, ax.decimals, p);
       } else if (last && !ax.raw.empty() && ax.raw.size() < kMaxNumberChars) {
         std::memcpy(p, ax.raw.data(), ax.raw.size());
         p += ax.raw.size();
@@ -312,9 +312,16 @@ void Subdivider::write_pieces(const RawLine& raw, const Line& line, const Plan& 
         p += format_number(at, ax.decimals, p);
       }
     }
+    std::string_view end_of_line = last ? raw.ending : ending;
+    if (k == 1 && !rest.empty()) {
+      out_.write(std::string_view(buffer, static_cast<std::size_t>(p - buffer)));
+      out_.write(rest);
+      out_.write(end_of_line);
+      continue;
+    }
+    std::memcpy(p, end_of_line.data(), end_of_line.size());  // at most "\r\n"
+    p += end_of_line.size();
     out_.write(std::string_view(buffer, static_cast<std::size_t>(p - buffer)));
-    if (k == 1 && !rest.empty()) out_.write(rest);
-    out_.write(last ? raw.ending : ending);
   }
 }
 

@@ -58,3 +58,22 @@ TEST_CASE("decimals_of counts digits after the point", "[number]") {
   CHECK(gcode::decimals_of("5") == 0);
   CHECK(gcode::decimals_of("-.80") == 2);
 }
+
+TEST_CASE("format_scaled writes a scaled integer exactly as format_number writes the value", "[number]") {
+  char a[gcode::kMaxNumberChars], b[gcode::kMaxNumberChars];
+  auto scaled = [&](std::int64_t units, int decimals) {
+    return std::string(a, gcode::format_scaled(units, decimals, a));
+  };
+  CHECK(scaled(12345, 5) == "0.12345");
+  CHECK(scaled(-7, 5) == "-0.00007");
+  CHECK(scaled(120, 3) == "0.12");
+  CHECK(scaled(0, 3) == "0");
+  CHECK(scaled(-5000, 3) == "-5");
+  for (std::int64_t u = -300000; u <= 300000; u += 997)
+    for (int d : {0, 3, 5})
+      REQUIRE(scaled(u, d) == gcode::number_text(static_cast<double>(u) / std::pow(10.0, d), d, b));
+  // Halves round away from zero, huge values are clamped, never undefined.
+  CHECK(gcode::number_text(0.0005, 3, b) == "0.001");
+  CHECK(gcode::number_text(-2.5, 0, b) == "-3");
+  CHECK(gcode::number_text(1e300, 9, b).size() > 0);
+}

@@ -9,6 +9,7 @@
 // zeros are dropped ("12.3", "5", "-0.04"), never with an exponent. Formatting
 // goes through a scaled integer, which is both fast and free of binary noise.
 #include <cstddef>
+#include <cstdint>
 #include <string_view>
 
 namespace gcode {
@@ -28,6 +29,14 @@ inline constexpr std::size_t kMaxNumberChars = 48;
 // bare point removed, "-0" written as "0". Returns the number of chars written.
 // Values beyond +-1e15 are clamped (no G-code axis gets there).
 std::size_t format_number(double value, int decimals, char* out);
+
+// `value` in units of 10^-decimals, rounded half away from zero (as
+// format_number rounds), clamped as format_number clamps.
+std::int64_t to_scaled(double value, int decimals);
+
+// Writes units x 10^-decimals the way format_number writes a value, for
+// callers that already hold a scaled integer (exact: nothing to round).
+std::size_t format_scaled(std::int64_t units, int decimals, char* out);
 
 // Convenience for tests and messages.
 std::string_view number_text(double value, int decimals, char (&buffer)[kMaxNumberChars]);
