@@ -3,8 +3,10 @@
 #
 #   gc_measure OUT CMD [ARGS...]
 #       Runs CMD with standard output to OUT, GC_BENCH_RUNS times (default 3),
-#       and sets GC_SECONDS (the best wall-clock time) and GC_RSS_KB (the peak
-#       resident set size of CMD, largest over the runs; from GNU time).
+#       and sets GC_SECONDS (the best wall-clock time), GC_CPU_SECONDS (the
+#       best user + system CPU time: steadier than wall time on a busy
+#       machine) and GC_RSS_KB (the peak resident set size of CMD, largest
+#       over the runs; from GNU time).
 #       CMD's standard error is kept back and shown only if CMD fails, in
 #       which case gc_measure returns 1.
 #   gc_row NAME MB_PER_S LINES_PER_S RSS_KB NOTE
@@ -17,12 +19,12 @@
 gc_measure() {
   local out=$1
   shift
-  local runs=${GC_BENCH_RUNS:-3} best="" rss=0 i t0 t1 s r
+  local runs=${GC_BENCH_RUNS:-3} best="" cpu="" rss=0 i t0 t1 s r c
   local timefile
   timefile=$(mktemp)
   for ((i = 0; i < runs; i++)); do
     t0=$(date +%s%N)
-    if ! /usr/bin/time -f %M -o "$timefile" "$@" >"$out" 2>"$timefile.err"; then
+    if ! /usr/bin/time -f "%M %U %S" -o "$timefile" "$@" >"$out" 2>"$timefile.err"; then
       echo "bench: failed: $*" >&2
       cat "$timefile.err" >&2
       rm -f "$timefile" "$timefile.err"
@@ -30,12 +32,14 @@ gc_measure() {
     fi
     t1=$(date +%s%N)
     s=$(((t1 - t0) / 1000))
-    r=$(tail -n 1 "$timefile")
+    read -r r c <<<"$(tail -n 1 "$timefile" | awk '{ printf "%d %d", $1, ($2 + $3) * 1e6 }')"
     if [ -z "$best" ] || [ "$s" -lt "$best" ]; then best=$s; fi
+    if [ -z "$cpu" ] || [ "$c" -lt "$cpu" ]; then cpu=$c; fi
     if [ "$r" -gt "$rss" ]; then rss=$r; fi
   done
   rm -f "$timefile" "$timefile.err"
   GC_SECONDS=$(awk -v us="$best" 'BEGIN { printf "%.4f", us / 1e6 }')
+  GC_CPU_SECONDS=$(awk -v us="$cpu" 'BEGIN { printf "%.2f", us / 1e6 }')
   GC_RSS_KB=$rss
 }
 

@@ -11,11 +11,12 @@
 #                                        (and checks OUT is identical to FILE)
 #   parse_bench STAGE FILE > OUT         the same pass piece by piece
 # then runs every bench/parts/*.sh (other tools' benchmarks) and prints a
-# summary table. Environment: GC_BENCH_RUNS (best of N, default 3),
+# summary table. Environment: GC_BENCH_RUNS (best of N, default 5),
 # GC_BENCH_MB (size of the large file, default 160).
 #
 # A part is run with GC_BIN (the built tools), GC_BENCH_FILE (the large file),
-# GC_CAT_MBS (cat's MB/s in this run), GC_BENCH_TMP (a scratch directory),
+# GC_CAT_MBS and GC_CAT_CPU_MBS (cat's MB/s in this run, by wall and by CPU
+# time), GC_BENCH_TMP (a scratch directory),
 # GC_BENCH_LIB (bench/measure.sh, timing helpers); its `gc_row` lines become
 # rows of the summary table.
 set -euo pipefail
@@ -24,7 +25,7 @@ root=$(cd "$here/.." && pwd)
 build=$root/build-bench
 data=$here/data
 mb=${GC_BENCH_MB:-160}
-export GC_BENCH_RUNS=${GC_BENCH_RUNS:-3}
+export GC_BENCH_RUNS=${GC_BENCH_RUNS:-5}
 
 if [ ! -x /usr/bin/time ]; then
   echo "bench: installing GNU time (peak memory figures)" >&2
@@ -62,23 +63,27 @@ echo
 
 rows=()
 cat_mbs=""
+cat_cpu_mbs=""
 # bench_one NAME NOTE CMD...: measures CMD on the large file (its last
 # argument), once more on the half-size file for memory, and records the row.
 bench_one() {
   local name=$1 note=$2
   shift 2
   gc_measure "$out" "$@" "$file"
-  local secs=$GC_SECONDS rss=$GC_RSS_KB
+  local secs=$GC_SECONDS cpu=$GC_CPU_SECONDS rss=$GC_RSS_KB
   GC_BENCH_RUNS=1 gc_measure /dev/null "$@" "$half"
   local rss_half=$GC_RSS_KB
-  local mbs lps ratio
+  local mbs cpu_mbs lps ratio
   mbs=$(gc_rate "$bytes" "$secs" 1e6)
+  cpu_mbs=$(gc_rate "$bytes" "$cpu" 1e6)
   lps=$(gc_rate "$lines" "$secs" 1e6)
   [ -n "$cat_mbs" ] || cat_mbs=$mbs
+  [ -n "$cat_cpu_mbs" ] || cat_cpu_mbs=$cpu_mbs
   ratio=$(awk -v a="$mbs" -v c="$cat_mbs" 'BEGIN { printf "%.0f%%", 100 * a / c }')
-  printf '%-38s %7.3f s %8s MB/s %6s M lines/s %5s of cat  peak RSS %s kB (half file: %s kB)\n' \
-    "$name" "$secs" "$mbs" "$lps" "$ratio" "$rss" "$rss_half"
-  rows+=("$(printf '%s\t%s\t%s\t%s\t%s\t%s' "$name" "$mbs" "$lps" "$ratio" "$rss/$rss_half" "$note")")
+  cpu_ratio=$(awk -v a="$cpu_mbs" -v c="$cat_cpu_mbs" 'BEGIN { if (a == "-" || c == "-") print "-"; else printf "%.0f%%", 100 * a / c }')
+  printf '%-36s %7.3f s %7s MB/s %5s M lines/s %4s of cat | CPU %5s s %7s MB/s %4s of cat | RSS %s kB, half file %s kB\n' \
+    "$name" "$secs" "$mbs" "$lps" "$ratio" "$cpu" "$cpu_mbs" "$cpu_ratio" "$rss" "$rss_half"
+  rows+=("$(printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s' "$name" "$mbs" "$lps" "$ratio" "$cpu_mbs" "$cpu_ratio" "$rss/$rss_half" "$note")")
 }
 
 echo "== the full pass against cat"
@@ -106,7 +111,7 @@ fi
 shopt -s nullglob
 parts=("$here"/parts/*.sh)
 if [ ${#parts[@]} -gt 0 ]; then
-  export GC_BIN=$bin GC_BENCH_FILE=$file GC_CAT_MBS=$cat_mbs GC_BENCH_TMP=$tmp GC_BENCH_LIB=$here/measure.sh
+  export GC_BIN=$bin GC_BENCH_FILE=$file GC_CAT_MBS=$cat_mbs GC_CAT_CPU_MBS=$cat_cpu_mbs GC_BENCH_TMP=$tmp GC_BENCH_LIB=$here/measure.sh
   for part in "${parts[@]}"; do
     echo
     echo "== $(basename "$part")"
@@ -119,15 +124,16 @@ if [ ${#parts[@]} -gt 0 ]; then
     while IFS=$'\t' read -r _ name mbs lps rss note; do
       ratio=-
       if [ "$mbs" != "-" ]; then ratio=$(awk -v a="$mbs" -v c="$cat_mbs" 'BEGIN { printf "%.0f%%", 100 * a / c }'); fi
-      rows+=("$(printf '%s\t%s\t%s\t%s\t%s\t%s' "$name" "$mbs" "$lps" "$ratio" "$rss" "$note")")
+      rows+=("$(printf '%s\t%s\t%s\t%s\t-\t-\t%s\t%s' "$name" "$mbs" "$lps" "$ratio" "$rss" "$note")")
     done < <(grep '^BENCH_ROW' "$tmp/part.out" || true)
   done
 fi
 
 echo
-echo "== summary ($(gc_rate "$bytes" 1 1e6) MB, $lines lines; peak RSS: large file / half file)"
-printf '%-38s %9s %11s %8s %17s  %s\n' "pass" "MB/s" "M lines/s" "of cat" "peak RSS kB" "note"
+echo "== summary ($(gc_rate "$bytes" 1 1e6) MB, $lines lines; peak RSS: large file / half file; load average $(cut -d' ' -f1-3 /proc/loadavg))"
+echo "(wall: best elapsed time; CPU: best user+system time, steadier when the machine is busy)"
+printf '%-36s %8s %9s %7s %8s %7s %15s  %s\n' "pass" "MB/s" "M lines/s" "of cat" "CPU MB/s" "of cat" "peak RSS kB" "note"
 for row in "${rows[@]}"; do
-  IFS=$'\t' read -r name mbs lps ratio rss note <<<"$row"
-  printf '%-38s %9s %11s %8s %17s  %s\n' "$name" "$mbs" "$lps" "$ratio" "$rss" "$note"
+  IFS=$'\t' read -r name mbs lps ratio cpu_mbs cpu_ratio rss note <<<"$row"
+  printf '%-36s %8s %9s %7s %8s %7s %15s  %s\n' "$name" "$mbs" "$lps" "$ratio" "$cpu_mbs" "$cpu_ratio" "$rss" "$note"
 done
