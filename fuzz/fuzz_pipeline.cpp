@@ -22,6 +22,7 @@
 #include "gcode/layer_tracker.hpp"
 #include "gcode/line.hpp"
 #include "gcode/line_reader.hpp"
+#include "gcode/number.hpp"
 #include "gcode/output_buffer.hpp"
 
 namespace {
@@ -82,7 +83,13 @@ class EchoSink : public gcode::LayerSink {
     check(t.layer <= last_layer_, "line in a layer not announced");
     check(t.region != gcode::Region::EndCode || saw_end_, "end code line before on_end_code");
     // Exercise the accessors on every line.
-    for (const gcode::Word& w : t.line) check(w.letter >= 'A' && w.letter <= 'Z', "word letter not upper case");
+    for (const gcode::Word& w : t.line) {
+      check(w.letter >= 'A' && w.letter <= 'Z', "word letter not upper case");
+      // Line reads numbers in its own fast pass; it must agree with
+      // parse_number bit for bit.
+      double v = 0;
+      if (w.has_value) check(gcode::parse_number(w.raw, v) && v == w.value, "word value differs from parse_number");
+    }
     (void)t.line.comment_text();
     (void)t.line.code();
     ++lines;
