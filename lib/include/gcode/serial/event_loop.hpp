@@ -1,0 +1,50 @@
+#pragma once
+// One thread, one poll(): file descriptors and timers. Nothing spins: the
+// loop sleeps until a descriptor is ready or the earliest timer is due, so
+// the CPU stays idle while a slow printer works.
+#include <functional>
+#include <vector>
+
+namespace gcode::serial {
+
+class EventLoop {
+ public:
+  using IoHandler = std::function<void(short revents)>;
+  // A timer asks for its deadline (monotonic seconds, or infinity) before
+  // every sleep, and is fired once the deadline has passed.
+  using Deadline = std::function<double()>;
+  using Fire = std::function<void(double now)>;
+
+  int add_fd(int fd, short events, IoHandler handler);
+  void set_events(int id, short events);
+  void remove_fd(int id);
+  void add_timer(Deadline deadline, Fire fire);
+
+  // Runs until stop() or until nothing is left to wait for.
+  void run();
+  void stop() { stopped_ = true; }
+  bool stopped() const { return stopped_; }
+
+  // Monotonic clock in seconds.
+  static double now();
+
+ private:
+  struct Watch {
+    int fd;
+    short events;
+    IoHandler handler;
+    bool removed = false;
+  };
+  struct Timer {
+    Deadline deadline;
+    Fire fire;
+  };
+  std::vector<Watch> watches_;
+  std::vector<Timer> timers_;
+  bool stopped_ = false;
+};
+
+// Makes a descriptor non-blocking (throws std::system_error on failure).
+void set_nonblocking(int fd);
+
+}  // namespace gcode::serial

@@ -1,0 +1,48 @@
+#pragma once
+// Serial ports and pseudo-terminals.
+//
+// Ports are set up with Linux's termios2 and BOTHER, which takes any baud
+// rate as a number: Marlin boards commonly run at 250000 or 500000, rates
+// the classic B-constants of termios cannot express. 8N1, raw, no flow
+// control. A pseudo-terminal path (a virtual printer) opens the same way.
+#include <string>
+#include <vector>
+
+namespace gcode::serial {
+
+struct PortOptions {
+  int baud = 250000;
+  bool reset = false;  // pulse DTR low to restart an Arduino-style board
+};
+
+// Opens and configures `path`; the descriptor is non-blocking. Throws
+// std::runtime_error with a readable message.
+int open_serial_port(const std::string& path, const PortOptions& options);
+
+struct PortInfo {
+  std::string path;         // /dev/ttyACM0
+  std::string description;  // the /dev/serial/by-id name or the driver
+};
+// Candidate printer ports: USB serial adapters and CDC-ACM boards.
+std::vector<PortInfo> list_serial_ports();
+
+// A pseudo-terminal whose slave side is reachable through a symlink, so that
+// any host program can open it like a serial port. The slave is kept open
+// here too, so the master never sees a hang-up between clients.
+class PseudoTerminal {
+ public:
+  explicit PseudoTerminal(const std::string& link_path);
+  ~PseudoTerminal();  // removes the symlink
+  PseudoTerminal(const PseudoTerminal&) = delete;
+  PseudoTerminal& operator=(const PseudoTerminal&) = delete;
+  int master() const { return master_; }
+  const std::string& slave_path() const { return slave_path_; }
+
+ private:
+  int master_ = -1;
+  int slave_ = -1;
+  std::string slave_path_;
+  std::string link_;
+};
+
+}  // namespace gcode::serial

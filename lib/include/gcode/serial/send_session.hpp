@@ -1,0 +1,59 @@
+#pragma once
+// gc-send's pipeline in one event loop: G-code from the input is split into
+// lines, given layers (layer_tracker.hpp), stripped of comments and handed to
+// the Sender, whose bytes go to the port; the port's lines go back to the
+// Sender. Ctrl-C once stops sending and waits for the lines in flight;
+// Ctrl-C twice sends M112 at once.
+#include <cstdint>
+#include <string>
+
+#include "gcode/diagnostics.hpp"
+#include "gcode/layer_marker.hpp"
+#include "gcode/layer_tracker.hpp"
+#include "gcode/serial/event_loop.hpp"
+#include "gcode/serial/sender.hpp"
+
+namespace gcode::serial {
+
+class SendSession : private LayerSink {
+ public:
+  // Does not own the descriptors. `port_fd` is made non-blocking.
+  SendSession(EventLoop& loop, Sender& sender, int input_fd, int port_fd, Diagnostics& diagnostics);
+  ~SendSession() override;
+  SendSession(const SendSession&) = delete;
+  SendSession& operator=(const SendSession&) = delete;
+
+  // Runs until the sender is finished.
+  void run();
+  std::uint64_t host_commands() const { return host_commands_; }
+  std::uint64_t input_lines() const { return input_lines_; }
+  int layers() const { return tracker_.layer_count(); }
+
+ private:
+  void on_line(const TrackedLine& line) override;
+  void read_input();
+  void read_port();
+  void flush_port();
+  void on_signal();
+  void update();
+
+  EventLoop& loop_;
+  Sender& sender_;
+  int input_fd_;
+  int port_fd_;
+  int signal_fd_ = -1;
+  Diagnostics& diag_;
+  LayerMarkers markers_;
+  LayerTracker tracker_;
+  std::string input_;         // bytes read, not yet split (a partial last line)
+  std::uint64_t input_offset_ = 0;
+  std::uint64_t input_lines_ = 0;
+  std::uint64_t host_commands_ = 0;
+  bool input_done_ = false;
+  std::string port_in_;       // a partial line from the printer
+  int input_watch_ = -1;
+  int port_watch_ = -1;
+  int interrupts_ = 0;
+};
+
+}  // namespace gcode::serial

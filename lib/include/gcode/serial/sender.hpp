@@ -1,0 +1,217 @@
+#pragma once
+// The host side of the serial protocol, without any I/O: commands go in,
+// bytes for the port come out, the printer's lines go back in, and the sender
+// decides what to send next. The event loop around it (send_session.hpp) only
+// moves bytes and time.
+//
+// What it takes care of:
+//  * handshake: "M110 N0" until the firmware answers, then "M115" for its
+//    capabilities (ADVANCED_OK, EMERGENCY_PARSER, ...);
+//  * numbering: every command goes out as "N<n> <command>*<checksum>" and
+//    stays in a history until no resend can ask for it any more;
+//  * flow control (flow_control.hpp): each "ok" frees the oldest line in
+//    flight (Marlin answers in order); with ADVANCED_OK, "ok N<n>" frees all
+//    lines up to n;
+//  * resends: "Resend: n" rewinds to line n. Marlin empties its receive
+//    buffer after a bad line, and every line still on the wire then fails
+//    too and asks for the same n again (each with its own "ok"), and each of
+//    those empties the buffer again, taking any early copy of line n with it.
+//    Stale lines wait in the buffer while a move blocks on a full planner,
+//    so silence alone proves nothing. After a rewind the sender therefore
+//    waits until every line before n is acknowledged (the queue is empty, so
+//    the firmware reads each arriving line at once) and the link has then
+//    been quiet for a few byte times; it ignores repeated requests for n
+//    meanwhile, and only then sends line n again. The "ok" after each Resend
+//    belongs to the rejected line and frees nothing;
+//  * timeouts: no answer for `timeout` seconds -> "M105" is sent; Marlin
+//    answers it in order with "ok T:...", which proves every earlier line was
+//    executed, so its answer acknowledges them all (the "ok" that got lost is
+//    counted as received, as OctoPrint does). After `max_timeouts` silent
+//    rounds the sender gives up, naming the last acknowledged line;
+//  * the end: after the last line, "M400" and its "ok" (the printer is idle).
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "gcode/serial/flow_control.hpp"
+#include "gcode/serial/protocol.hpp"
+
+namespace gcode::serial {
+
+struct SenderConfig {
+  FlowMode flow = FlowMode::Window;
+  int queue = 4;             // Marlin BUFSIZE
+  int rx_buffer = 128;       // Marlin RX_BUFFER_SIZE
+  double timeout = 10;       // seconds without an answer before M105
+  int max_timeouts = 5;      // consecutive silent rounds before giving up
+  int max_resends = 10;      // requests for one line before giving up
+  double link_bytes_per_second = 25000;  // baud / 10: sets the quiet time after a resend
+  bool handshake = true;     // M110 N0 + M115 before the first line
+  bool finish_with_m400 = true;
+};
+
+enum class SenderState : std::uint8_t { Idle, Handshake, Capabilities, Printing, Done, Failed, Cancelled };
+
+enum class LogLevel : std::uint8_t { Trace, Info, Warning };  // Trace: every line both ways
+
+struct SenderStats {
+  std::uint64_t lines = 0;          // numbered lines sent (first time)
+  std::uint64_t payload_bytes = 0;  // their bytes
+  std::uint64_t bytes = 0;          // every byte written (resends, M105, handshake)
+  std::uint64_t oks = 0;
+  std::uint64_t resend_requests = 0;     // rewinds done
+  std::uint64_t duplicate_resends = 0;   // repeated requests ignored
+  std::uint64_t resent_lines = 0;        // lines sent again
+  std::uint64_t errors = 0;              // Error: lines
+  std::uint64_t timeouts = 0;
+  std::uint64_t busy = 0;
+  std::uint64_t unknown = 0;
+  std::uint64_t stray_oks = 0;           // an ok with nothing in flight
+  double print_start = -1;               // when the first numbered line went out
+  double print_end = -1;                 // when the last ok came back
+};
+
+// Where the last acknowledged line came from, for "resume from here" messages.
+struct Position {
+  long long number = 0;          // the line number sent to the printer
+  std::uint64_t source_line = 0; // the line in the input file (0: none)
+  int layer = 0;                 // the layer it belongs to (0: start code)
+};
+
+struct FirmwareInfo {
+  std::string name;              // FIRMWARE_NAME
+  bool advanced_ok = false;
+  bool emergency_parser = false;
+  bool autoreport_temp = false;
+  bool busy_protocol = false;
+  double time_scale = 0;         // TIME_SCALE: a simulated printer runs this much faster
+  double baud = 0;               // BAUD: a simulated printer's link rate
+};
+
+class Sender {
+ public:
+  using Logger = std::function<void(LogLevel, std::string_view)>;
+  Sender(const SenderConfig& config, Logger log);
+
+  void start(double now);
+  // Logs every line sent and received (LogLevel::Trace).
+  void set_trace(bool on) { trace_ = on; }
+
+  // Input: commands as they go to the firmware (see command_for_sending).
+  bool wants_input() const { return !input_done_ && pending() < kHighWater; }
+  void submit(std::string_view command, std::uint64_t source_line, int layer);
+  void end_of_input();
+  // Sends what the flow control allows now; call after submit/end_of_input.
+  void pump(double now);
+
+  // Output: bytes for the port.
+  std::string_view output() const { return std::string_view(out_).substr(out_pos_); }
+  void written(std::size_t n, double now);
+
+  // A line from the printer (without its ending).
+  void on_line(std::string_view line, double now);
+  // Runs timers; call when `deadline()` has passed (or any time).
+  void on_timer(double now);
+  double deadline() const;
+
+  // The port went away (unplugged board, closed pseudo-terminal).
+  void disconnected(std::string_view why);
+
+  // First Ctrl-C: send nothing more, wait for the lines in flight.
+  void cancel();
+  // Second Ctrl-C: M112 goes out at once, ahead of anything queued.
+  void emergency_stop();
+
+  SenderState state() const { return state_; }
+  bool finished() const { return state_ == SenderState::Done || state_ == SenderState::Failed || (state_ == SenderState::Cancelled && output().empty()); }
+  const std::string& failure() const { return failure_; }
+  const SenderStats& stats() const { return stats_; }
+  const Position& last_acknowledged() const { return last_acked_; }
+  const FirmwareInfo& firmware() const { return firmware_; }
+  const FlowControl& flow() const { return flow_; }
+  std::size_t in_flight() const { return flight_.size(); }
+  std::size_t pending() const { return static_cast<std::size_t>(next_number_ - next_send_); }
+  bool cancelled() const { return cancelled_; }
+  bool emergency() const { return emergency_; }
+  // "line 1234 of the input (layer 12)" for messages.
+  std::string describe(const Position& p) const;
+
+ private:
+  static constexpr std::size_t kHighWater = 512;   // lines read ahead of the printer
+  static constexpr long long kHistory = 512;       // sent lines kept for resends
+  static constexpr double kQuietStart = 0.05;      // quiet link after M115 before the first line
+
+  struct Slot {
+    std::string wire;            // "N12 G1 X1*34\n"
+    std::uint64_t source_line = 0;
+    int layer = 0;
+    bool long_running = false;   // M109, G28 ...: the answer may take long
+    bool temperature_query = false;  // M105: answered in order with "ok T:..."
+  };
+  struct Flight {
+    long long number;            // -1: an unnumbered command (M105 after a timeout)
+    std::uint32_t bytes;
+    bool temperature_query;
+  };
+
+  Slot& slot(long long n) { return ring_[static_cast<std::size_t>(n) & (ring_.size() - 1)]; }
+  const Slot& slot(long long n) const { return ring_[static_cast<std::size_t>(n) & (ring_.size() - 1)]; }
+  void grow_ring();
+  void fill(double now);
+  void send_unnumbered(std::string_view command, bool temperature_query, bool track);
+  void acknowledge_front();
+  void on_ok(const Response& r, double now);
+  void on_resend(long long n, double now);
+  void on_capability(std::string_view text);
+  void fail(std::string message);
+  void check_done(double now);
+  double current_timeout() const;
+  bool settled(double now) const;
+
+  SenderConfig config_;
+  Logger log_;
+  FlowControl flow_;
+  SenderState state_ = SenderState::Idle;
+  std::string out_;
+  std::size_t out_pos_ = 0;
+
+  std::vector<Slot> ring_;
+  long long next_number_ = 1;   // the number the next submitted command gets
+  long long next_send_ = 1;     // the next number to transmit
+  long long highest_sent_ = 0;
+  std::deque<Flight> flight_;
+  std::size_t flight_bytes_ = 0;
+
+  bool input_done_ = false;
+  bool final_queued_ = false;
+  bool cancelled_ = false;
+  bool emergency_ = false;
+  bool paused_ = false;         // //action:pause until //action:resume
+  bool expect_error_ok_ = false;
+  bool caps_answered_ = false;
+
+  bool settling_ = false;
+  long long settle_line_ = -1;
+  double settle_from_ = 0;
+  double settle_quiet_ = 0;
+  long long resend_line_ = -1;
+  int resend_count_ = 0;
+
+  double last_rx_ = 0;          // last answer that proves the printer is alive
+  double last_any_rx_ = 0;      // last byte of anything
+  double last_busy_ = -1e9;
+  double handshake_start_ = 0;
+  double handshake_retry_ = 0;
+  int timeouts_in_row_ = 0;
+
+  Position last_acked_;
+  FirmwareInfo firmware_;
+  SenderStats stats_;
+  std::string failure_;
+  bool trace_ = false;
+};
+
+}  // namespace gcode::serial

@@ -1,0 +1,175 @@
+#pragma once
+// A model of a Marlin printer at the other end of a serial link, for tests,
+// benchmarks and trying a pipeline without hardware.
+//
+// It is a discrete-event simulation in simulated seconds (the caller maps
+// wall time to simulated time with a time scale, see virtual_link.hpp):
+//  * the link carries baud/10 bytes per second in each direction;
+//  * received bytes go into an RX buffer of `rx_buffer` bytes (one slot is
+//    kept free, as in Marlin's ring buffer); a byte that arrives while it is
+//    full is lost, as on real hardware;
+//  * between commands the firmware moves complete lines from the RX buffer
+//    into a command queue of `queue` (BUFSIZE) entries, checking line number
+//    and checksum with Marlin's exact messages ("Error:checksum mismatch,
+//    Last Line: 41", "Resend: 42", "ok") and emptying the RX buffer after an
+//    error, as Marlin does;
+//  * the head of the queue executes: a move waits for a free block in a
+//    planner of `planner` blocks, each taking length / feed rate; the "ok"
+//    goes out when the command leaves the queue (with ADVANCED_OK fields if
+//    enabled);
+//  * G28, G4, M400 report "echo:busy: processing" every 2 s; M109/M190 heat
+//    at a fixed rate and report temperatures every second; M105, M114, M155,
+//    M110, M115 answer as Marlin does; M112 stops the printer at once;
+//  * faults can be injected: corrupted lines, lost "ok"s, spurious resend
+//    requests, garbage lines, busy stalls, going silent, a fatal error, a
+//    disconnect;
+//  * every executed command is logged with the simulated time and position.
+#include <cstdint>
+#include <cstdio>
+#include <deque>
+#include <random>
+#include <string>
+#include <string_view>
+
+#include "gcode/machine_state.hpp"
+
+namespace gcode::serial {
+
+struct VirtualPrinterConfig {
+  double baud = 250000;
+  int queue = 4;              // BUFSIZE
+  int rx_buffer = 128;        // RX_BUFFER_SIZE
+  int planner = 16;           // BLOCK_BUFFER_SIZE
+  double time_scale = 1;      // simulated seconds per wall second
+  bool advanced_ok = false;   // answer "ok N.. P.. B.."
+  bool instant_moves = false; // moves take no time: the link is the only limit
+  double heat_rate = 10;      // degrees per second (the bed heats at a third of it)
+  // Faults: probabilities per received line / per answer.
+  double corrupt = 0;         // a received line gets one byte changed
+  double drop_ok = 0;         // an "ok" is not sent
+  double resend = 0;          // a good line is rejected as if corrupted
+  double garbage = 0;         // a line of junk after an answer
+  double busy = 0;            // a command stalls 3 s with busy messages
+  long long silent_after = -1;     // stop answering after this many commands
+  long long halt_after = -1;       // report a fatal error after this many commands
+  long long disconnect_after = -1; // drop the link after this many commands
+  std::uint32_t seed = 1;
+  std::string log_path;       // where the caller writes the executed-command log
+};
+
+// Applies "key=value,key=value" (the part after "virtual:") to `config`.
+// Keys: baud queue rx planner time-scale advanced-ok instant-moves heat-rate
+// corrupt drop-ok resend garbage busy silent-after halt-after disconnect-after
+// seed log. Throws std::invalid_argument naming a bad key or value.
+void parse_virtual_options(std::string_view text, VirtualPrinterConfig& config);
+
+struct VirtualPrinterStats {
+  std::uint64_t executed = 0;          // commands that left the queue
+  std::uint64_t accepted_lines = 0;    // numbered lines accepted
+  std::uint64_t checksum_errors = 0;
+  std::uint64_t line_number_errors = 0;
+  std::uint64_t overrun_bytes = 0;     // bytes lost to a full RX buffer
+  std::uint64_t drained_bytes = 0;     // bytes thrown away after an error
+  std::uint64_t corrupted = 0, dropped_oks = 0, spurious_resends = 0, garbage_lines = 0, busy_stalls = 0;
+  std::uint64_t rx_bytes = 0, tx_bytes = 0;
+  std::uint64_t moves = 0;
+  double first_move = -1;              // when the first block started
+  double last_move_end = -1;           // when the last block ended
+  double starved = 0;                  // planner empty while waiting for the next move
+};
+
+class VirtualPrinter {
+ public:
+  explicit VirtualPrinter(const VirtualPrinterConfig& config, std::FILE* log = nullptr);
+
+  // Bytes written by the host at simulated time `now`: they reach the RX
+  // buffer one byte time apart, after what is already on the wire.
+  void receive(std::string_view bytes, double now);
+  // Runs the model up to `now`.
+  void advance(double now);
+  // When the model next has something to do (an arriving byte, a finished
+  // move, a message to send); infinity when idle.
+  double next_event() const;
+  // Bytes whose transmission to the host has completed by `now`; the caller
+  // takes them with `take(n)`.
+  std::string_view transmitted(double now) const;
+  void take(std::size_t n);
+
+  bool disconnected() const { return disconnected_; }
+  bool halted() const { return halted_; }
+  const VirtualPrinterStats& stats() const { return stats_; }
+  const VirtualPrinterConfig& config() const { return config_; }
+  // The time the planner was empty between moves, as a fraction of the time
+  // from the first move to the last.
+  double starvation() const;
+
+ private:
+  enum class Wait : std::uint8_t { None, PlannerSlot, PlannerEmpty, Dwell, Heating, Homing, Stall };
+  struct Command {
+    std::string text;      // without N and checksum
+    long long number = -1;
+  };
+
+  void arrive(char c, double t);
+  void run(double t);
+  void parse_rx(double t);
+  bool process_line(std::string& line, double t);
+  void line_error(const char* message, double t);
+  void start(double t);
+  bool still_waiting(double t);
+  void finish(double t);
+  void execute(const Command& cmd, double t);
+  void add_block(double duration, double t);
+  void planner_step(double t);
+  void send(std::string_view text);
+  void send_ok(long long number);
+  void update_temperatures(double t);
+  std::string temperature_report() const;
+  double heat_done_time() const;
+  bool chance(double p);
+
+  VirtualPrinterConfig config_;
+  std::FILE* log_;
+  double byte_time_;
+  double now_ = 0;               // the time of the event being processed
+
+  // host -> printer
+  std::string wire_;
+  std::size_t wire_head_ = 0;
+  double wire_next_ = 0;        // arrival time of wire_[wire_head_]
+  std::string rx_;              // the RX ring buffer (front = oldest)
+  std::size_t rx_head_ = 0;
+  std::string partial_;         // the line being read out of the RX buffer
+
+  // printer -> host
+  std::string tx_;
+  std::size_t tx_head_ = 0;
+  double tx_free_at_ = 0;       // when the last queued byte is sent
+
+  std::deque<Command> queue_;
+  std::deque<Command> spare_;   // reused strings
+  Wait wait_ = Wait::None;
+  double wait_until_ = 0;
+  double next_busy_ = 0;
+  double next_report_ = 1e300;  // heating report or M155 autoreport
+  double autoreport_ = 0;       // M155 interval, 0 = off
+  bool heating_bed_ = false;
+  double pending_duration_ = 0; // of a move waiting for a planner block
+  int after_ = 0;               // after the planner drains: 1 home, 2 dwell
+  double after_duration_ = 0;
+  bool ok_sent_ = false;        // M105 answers on its ok line
+
+  std::deque<double> planner_;  // durations; the front one runs
+  double head_end_ = 0;
+  double empty_since_ = -1;
+  bool waited_while_empty_ = false;
+
+  MachineState state_;
+  long long last_n_ = 0;
+  double hotend_ = 20, bed_ = 20, hotend_target_ = 0, bed_target_ = 0, temp_time_ = 0;
+  bool halted_ = false, silent_ = false, disconnected_ = false;
+  std::mt19937 rng_;
+  VirtualPrinterStats stats_;
+};
+
+}  // namespace gcode::serial

@@ -1,0 +1,197 @@
+#include "gcode/serial/protocol.hpp"
+
+#include <charconv>
+
+namespace gcode::serial {
+
+namespace {
+
+char lower(char c) { return (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c; }
+
+bool starts_with_nocase(std::string_view s, std::string_view prefix) {
+  if (s.size() < prefix.size()) return false;
+  for (std::size_t i = 0; i < prefix.size(); ++i)
+    if (lower(s[i]) != lower(prefix[i])) return false;
+  return true;
+}
+
+bool contains_nocase(std::string_view s, std::string_view needle) {
+  if (needle.size() > s.size()) return false;
+  for (std::size_t i = 0; i + needle.size() <= s.size(); ++i)
+    if (starts_with_nocase(s.substr(i), needle)) return true;
+  return false;
+}
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r' || s.front() == '\0')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r' || s.back() == '\0')) s.remove_suffix(1);
+  return s;
+}
+
+bool is_digit(char c) { return c >= '0' && c <= '9'; }
+
+// The first integer in `s` (after any non-digits), or -1.
+long long first_integer(std::string_view s) {
+  std::size_t i = 0;
+  while (i < s.size() && !is_digit(s[i])) ++i;
+  long long v = -1;
+  if (i < s.size()) std::from_chars(s.data() + i, s.data() + s.size(), v);
+  return v;
+}
+
+// "ok N12 P15 B3 T:..." -> the ADVANCED_OK fields and whether temperatures follow.
+void parse_ok_fields(std::string_view rest, Response& r) {
+  std::size_t i = 0;
+  while (i < rest.size()) {
+    while (i < rest.size() && rest[i] == ' ') ++i;
+    std::size_t start = i;
+    while (i < rest.size() && rest[i] != ' ') ++i;
+    std::string_view token = rest.substr(start, i - start);
+    if (token.size() < 2) continue;
+    if (token.find(':') != std::string_view::npos) {
+      // "T:210.0", "B:60.0": a temperature report rides on this ok (M105).
+      if (token[0] == 'T' || token[0] == 'B') r.has_temperature = true;
+      continue;
+    }
+    long long v = -1;
+    auto res = std::from_chars(token.data() + 1, token.data() + token.size(), v);
+    if (res.ec != std::errc() || res.ptr != token.data() + token.size()) continue;
+    if (token[0] == 'N') r.line = v;
+    if (token[0] == 'P') r.planner_free = static_cast<int>(v);
+    if (token[0] == 'B') r.queue_free = static_cast<int>(v);
+  }
+}
+
+}  // namespace
+
+std::uint8_t checksum(std::string_view text) {
+  std::uint8_t cs = 0;
+  for (char c : text) cs ^= static_cast<std::uint8_t>(c);
+  return cs;
+}
+
+void append_numbered_line(std::string& out, long long number, std::string_view command) {
+  std::size_t start = out.size();
+  char buf[24];
+  out += 'N';
+  auto res = std::to_chars(buf, buf + sizeof buf, number);
+  out.append(buf, res.ptr);
+  out += ' ';
+  out += command;
+  std::uint8_t cs = checksum(std::string_view(out).substr(start));
+  out += '*';
+  res = std::to_chars(buf, buf + sizeof buf, static_cast<unsigned>(cs));
+  out.append(buf, res.ptr);
+  out += '\n';
+}
+
+ErrorClass classify_error(std::string_view m) {
+  // Marlin: "checksum mismatch, Last Line: 5", "Line Number is not Last Line
+  // Number+1, Last Line: 5", "No Checksum with line number, Last Line: 5",
+  // "No Line Number with checksum, Last Line: 5"; Repetier: "expected line",
+  // "Format error". Each is followed by a Resend request.
+  if (contains_nocase(m, "checksum") || contains_nocase(m, "line number") || contains_nocase(m, "last line") ||
+      contains_nocase(m, "expected line") || contains_nocase(m, "format error"))
+    return ErrorClass::Resend;
+  // Marlin's kill(): "Printer halted. kill() called!", "Printer stopped due to
+  // errors. ... M999"; thermal protection: "Thermal Runaway", "MAXTEMP",
+  // "MINTEMP", "Heating failed". Klipper: "Shutdown", "MCU ... shutdown".
+  if (contains_nocase(m, "halted") || contains_nocase(m, "kill()") || contains_nocase(m, "killed") ||
+      contains_nocase(m, "stopped") || contains_nocase(m, "thermal runaway") || contains_nocase(m, "maxtemp") ||
+      contains_nocase(m, "mintemp") || contains_nocase(m, "heating failed") || contains_nocase(m, "shutdown") ||
+      contains_nocase(m, "emergency"))
+    return ErrorClass::Fatal;
+  return ErrorClass::Recoverable;
+}
+
+Response parse_response(std::string_view raw) {
+  Response r;
+  std::string_view s = trim(raw);
+  r.text = s;
+  if (s.empty()) return r;
+
+  if (starts_with_nocase(s, "ok") && (s.size() == 2 || s[2] == ' ' || s[2] == ':' || is_digit(s[2]))) {
+    r.kind = ResponseKind::Ok;
+    r.text = s.substr(2);
+    parse_ok_fields(r.text, r);
+    return r;
+  }
+  // "Resend: 12", "Resend:12", "resend 12", "rs 12", "rs:12", "rs N12".
+  if (starts_with_nocase(s, "resend") || (starts_with_nocase(s, "rs") && s.size() > 2 && (s[2] == ' ' || s[2] == ':'))) {
+    long long n = first_integer(s);
+    if (n >= 0) {
+      r.kind = ResponseKind::Resend;
+      r.line = n;
+      return r;
+    }
+  }
+  if (starts_with_nocase(s, "error:") || starts_with_nocase(s, "!!")) {
+    r.kind = ResponseKind::Error;
+    r.text = trim(s.substr(s[0] == '!' ? 2 : 6));
+    r.error = classify_error(r.text);
+    return r;
+  }
+  std::string_view body = s;
+  if (starts_with_nocase(body, "echo:")) body = trim(body.substr(5));
+  if (starts_with_nocase(body, "busy:")) {
+    r.kind = ResponseKind::Busy;
+    r.text = trim(body.substr(5));
+    return r;
+  }
+  if (starts_with_nocase(s, "//action:")) {
+    r.kind = ResponseKind::Action;
+    r.text = trim(s.substr(9));
+    return r;
+  }
+  if (body.data() != s.data() || starts_with_nocase(s, "//")) {
+    r.kind = ResponseKind::Echo;
+    r.text = body.data() != s.data() ? body : trim(s.substr(2));
+    // A fatal condition may also arrive as an echo on some firmware versions.
+    if (contains_nocase(r.text, "kill()") || contains_nocase(r.text, "printer halted")) {
+      r.kind = ResponseKind::Error;
+      r.error = ErrorClass::Fatal;
+    }
+    return r;
+  }
+  if (starts_with_nocase(s, "T:") || starts_with_nocase(s, "B:") || (s.size() > 3 && s[0] == 'T' && is_digit(s[1]) && s[2] == ':')) {
+    r.kind = ResponseKind::Temperature;
+    return r;
+  }
+  if (s == "wait") {
+    r.kind = ResponseKind::Wait;
+    return r;
+  }
+  if (starts_with_nocase(s, "start")) {
+    r.kind = ResponseKind::Start;
+    return r;
+  }
+  if (starts_with_nocase(s, "Cap:") || starts_with_nocase(s, "FIRMWARE_NAME:")) {
+    r.kind = ResponseKind::Capability;
+    return r;
+  }
+  r.kind = ResponseKind::Unknown;
+  if (contains_nocase(s, "kill()") || contains_nocase(s, "printer halted")) {
+    r.kind = ResponseKind::Error;
+    r.error = ErrorClass::Fatal;
+  }
+  return r;
+}
+
+std::string_view command_for_sending(std::string_view code) {
+  std::string_view s = trim(code);
+  if (!s.empty() && (s[0] == 'N' || s[0] == 'n') && s.size() > 1 && (is_digit(s[1]) || s[1] == '-')) {
+    std::size_t i = 1;
+    if (s[i] == '-') ++i;
+    while (i < s.size() && is_digit(s[i])) ++i;
+    s = trim(s.substr(i));
+  }
+  std::size_t star = s.rfind('*');
+  if (star != std::string_view::npos) {
+    bool digits = star + 1 < s.size();
+    for (std::size_t i = star + 1; i < s.size(); ++i) digits = digits && is_digit(s[i]);
+    if (digits) s = trim(s.substr(0, star));
+  }
+  return s;
+}
+
+}  // namespace gcode::serial

@@ -1,0 +1,49 @@
+#include <fcntl.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "gcode/serial/port.hpp"
+
+namespace gcode::serial {
+
+PseudoTerminal::PseudoTerminal(const std::string& link_path) : link_(link_path) {
+  master_ = posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
+  if (master_ < 0 || grantpt(master_) != 0 || unlockpt(master_) != 0)
+    throw std::runtime_error(fmt::format("cannot create a pseudo-terminal: {}", std::strerror(errno)));
+  char name[128];
+  if (ptsname_r(master_, name, sizeof name) != 0)
+    throw std::runtime_error(fmt::format("ptsname: {}", std::strerror(errno)));
+  slave_path_ = name;
+  slave_ = ::open(name, O_RDWR | O_NOCTTY | O_CLOEXEC);
+  if (slave_ < 0) throw std::runtime_error(fmt::format("cannot open {}: {}", slave_path_, std::strerror(errno)));
+  // Raw on both sides: no echo, no line editing, no CR/LF translation.
+  termios tio{};
+  tcgetattr(slave_, &tio);
+  cfmakeraw(&tio);
+  tcsetattr(slave_, TCSANOW, &tio);
+  tcgetattr(master_, &tio);
+  cfmakeraw(&tio);
+  tcsetattr(master_, TCSANOW, &tio);
+  ::unlink(link_.c_str());
+  if (::symlink(slave_path_.c_str(), link_.c_str()) != 0) {
+    int e = errno;
+    ::close(slave_);
+    ::close(master_);
+    throw std::runtime_error(fmt::format("cannot create the link {}: {}", link_, std::strerror(e)));
+  }
+}
+
+PseudoTerminal::~PseudoTerminal() {
+  ::unlink(link_.c_str());
+  if (slave_ >= 0) ::close(slave_);
+  if (master_ >= 0) ::close(master_);
+}
+
+}  // namespace gcode::serial

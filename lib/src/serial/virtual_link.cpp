@@ -1,0 +1,74 @@
+#include "gcode/serial/virtual_link.hpp"
+
+#include <poll.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <limits>
+
+namespace gcode::serial {
+
+VirtualLink::VirtualLink(EventLoop& loop, VirtualPrinter& printer, int fd)
+    : loop_(loop), printer_(printer), fd_(fd), wall0_(EventLoop::now()), scale_(printer.config().time_scale) {
+  set_nonblocking(fd_);
+  watch_ = loop_.add_fd(fd_, POLLIN, [this](short revents) { on_io(revents); });
+  loop_.add_timer(
+      [this] {
+        if (closed_) return std::numeric_limits<double>::infinity();
+        double t = printer_.next_event();
+        return std::isinf(t) ? t : wall0_ + t / scale_;
+      },
+      [this](double) { pump(); });
+  pump();
+}
+
+double VirtualLink::simulated_now() const { return (EventLoop::now() - wall0_) * scale_; }
+
+void VirtualLink::on_io(short revents) {
+  if (closed_) return;
+  if (revents & POLLIN) {
+    char buf[65536];
+    double now = simulated_now();
+    for (;;) {
+      ssize_t n = ::read(fd_, buf, sizeof buf);
+      if (n > 0) {
+        printer_.advance(now);  // what happened before these bytes arrived
+        printer_.receive(std::string_view(buf, static_cast<std::size_t>(n)), now);
+        continue;
+      }
+      if (n == 0) {
+        // The host closed its end (a socketpair); a pty never gets here
+        // because we keep its slave side open ourselves.
+        loop_.set_events(watch_, 0);
+        loop_.remove_fd(watch_);
+        closed_ = true;
+        return;
+      }
+      break;
+    }
+  }
+  pump();
+}
+
+void VirtualLink::pump() {
+  if (closed_) return;
+  double now = simulated_now();
+  printer_.advance(now);
+  std::string_view ready = printer_.transmitted(now);
+  out_.append(ready);
+  printer_.take(ready.size());
+  while (!out_.empty()) {
+    ssize_t n = ::write(fd_, out_.data(), out_.size());
+    if (n <= 0) break;
+    out_.erase(0, static_cast<std::size_t>(n));
+  }
+  loop_.set_events(watch_, static_cast<short>(POLLIN | (out_.empty() ? 0 : POLLOUT)));
+  if (printer_.disconnected() && out_.empty()) {
+    closed_ = true;
+    loop_.remove_fd(watch_);
+    if (on_close_) on_close_();
+  }
+}
+
+}  // namespace gcode::serial

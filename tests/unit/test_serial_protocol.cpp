@@ -1,0 +1,124 @@
+// Line format, checksums and the classification of printer answers
+// (gcode/serial/protocol.hpp), and the flow-control rules (flow_control.hpp).
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "gcode/serial/flow_control.hpp"
+#include "gcode/serial/protocol.hpp"
+
+using namespace gcode::serial;
+
+TEST_CASE("serial checksum is the XOR of every byte before the star", "[serial]") {
+  // The handshake line every Marlin host sends; its checksum is well known.
+  CHECK(checksum("N0 M110 N0") == 125);
+  std::string out;
+  append_numbered_line(out, 0, "M110 N0");
+  CHECK(out == "N0 M110 N0*125\n");
+  out.clear();
+  append_numbered_line(out, 12345, "G1 X1.5 Y-2 E.3");
+  std::uint8_t x = 0;
+  for (char c : std::string("N12345 G1 X1.5 Y-2 E.3")) x ^= static_cast<std::uint8_t>(c);
+  CHECK(out == "N12345 G1 X1.5 Y-2 E.3*" + std::to_string(x) + "\n");
+}
+
+TEST_CASE("serial command_for_sending drops an existing number and checksum", "[serial]") {
+  CHECK(command_for_sending("G1 X1") == "G1 X1");
+  CHECK(command_for_sending("  N17 G1 X1*99") == "G1 X1");
+  CHECK(command_for_sending("N17 G1 X1 *99 ") == "G1 X1");
+  CHECK(command_for_sending("M117 5*3 is 15") == "M117 5*3 is 15");
+  CHECK(command_for_sending("") == "");
+}
+
+TEST_CASE("serial ok answers, plain and ADVANCED_OK", "[serial]") {
+  Response r = parse_response("ok");
+  CHECK(r.kind == ResponseKind::Ok);
+  CHECK(r.line == -1);
+  r = parse_response("ok N12 P15 B3\r");
+  CHECK(r.kind == ResponseKind::Ok);
+  CHECK(r.line == 12);
+  CHECK(r.planner_free == 15);
+  CHECK(r.queue_free == 3);
+  r = parse_response("ok T:210.0 /210.0 B:60.1 /60.0 @:64 B@:0");
+  CHECK(r.kind == ResponseKind::Ok);
+  CHECK(r.has_temperature);
+  CHECK(r.queue_free == -1);
+  CHECK(parse_response("OK").kind == ResponseKind::Ok);
+  CHECK(parse_response("okay then").kind == ResponseKind::Unknown);
+}
+
+TEST_CASE("serial resend requests in every spelling", "[serial]") {
+  for (const char* s : {"Resend: 42", "Resend:42", "resend 42", "RESEND: 42", "rs 42", "rs N42", "rs:42"}) {
+    Response r = parse_response(s);
+    INFO(s);
+    CHECK(r.kind == ResponseKind::Resend);
+    CHECK(r.line == 42);
+  }
+}
+
+TEST_CASE("serial errors are classified: resend-related, recoverable, fatal", "[serial]") {
+  Response r = parse_response("Error:checksum mismatch, Last Line: 41");
+  CHECK(r.kind == ResponseKind::Error);
+  CHECK(r.error == ErrorClass::Resend);
+  CHECK(parse_response("Error:Line Number is not Last Line Number+1, Last Line: 41").error == ErrorClass::Resend);
+  CHECK(parse_response("Error:No Checksum with line number, Last Line: 41").error == ErrorClass::Resend);
+  CHECK(parse_response("Error:Printer halted. kill() called!").error == ErrorClass::Fatal);
+  CHECK(parse_response("Error:Thermal Runaway, system stopped! Heater_ID: 0").error == ErrorClass::Fatal);
+  CHECK(parse_response("Error:MAXTEMP triggered, system stopped! Heater_ID: 0").error == ErrorClass::Fatal);
+  CHECK(parse_response("!! Shutdown due to webhooks request").error == ErrorClass::Fatal);
+  CHECK(parse_response("Error:Busy: some message").error == ErrorClass::Recoverable);
+}
+
+TEST_CASE("serial busy, echo, actions, temperatures and the rest", "[serial]") {
+  CHECK(parse_response("echo:busy: processing").kind == ResponseKind::Busy);
+  CHECK(parse_response("busy: paused for user").kind == ResponseKind::Busy);
+  CHECK(parse_response("echo:Unknown command: \"X\"").kind == ResponseKind::Echo);
+  CHECK(parse_response("// Klipper state: Ready").kind == ResponseKind::Echo);
+  Response a = parse_response("//action:pause");
+  CHECK(a.kind == ResponseKind::Action);
+  CHECK(a.text == "pause");
+  CHECK(parse_response(" T:201.2 /210.0 B:60.0 /60.0 @:127 B@:0 W:3").kind == ResponseKind::Temperature);
+  CHECK(parse_response("T0:200.0 /200.0").kind == ResponseKind::Temperature);
+  CHECK(parse_response("wait").kind == ResponseKind::Wait);
+  CHECK(parse_response("start").kind == ResponseKind::Start);
+  CHECK(parse_response("Cap:ADVANCED_OK:1").kind == ResponseKind::Capability);
+  CHECK(parse_response("").kind == ResponseKind::Empty);
+  CHECK(parse_response("#$%&()+-<=>?").kind == ResponseKind::Unknown);
+}
+
+TEST_CASE("flow control: ping-pong keeps one line in flight", "[serial]") {
+  FlowControl f(FlowMode::PingPong, 4, 128);
+  CHECK(f.may_send(0, 0, 30));
+  CHECK_FALSE(f.may_send(1, 30, 10));
+}
+
+TEST_CASE("flow control: window counts lines and bytes, one byte short of the buffer", "[serial]") {
+  FlowControl f(FlowMode::Window, 4, 128);
+  CHECK(f.may_send(0, 0, 500));   // a line longer than the buffer still goes alone
+  CHECK(f.may_send(3, 90, 37));   // 127 bytes: fits Marlin's ring buffer
+  CHECK_FALSE(f.may_send(3, 90, 38));
+  CHECK_FALSE(f.may_send(4, 40, 10));  // the queue is full
+}
+
+TEST_CASE("flow control: advanced-ok learns the queue from B; auto switches on it", "[serial]") {
+  FlowControl f(FlowMode::AdvancedOk, 4, 1024);
+  CHECK_FALSE(f.ok_numbers_acknowledge());
+  Response ok = parse_response("ok P15 B7");  // BUFSIZE 8, only the acknowledged command queued
+  f.on_ok(ok);
+  CHECK(f.queue() == 8);
+  CHECK(f.may_send(7, 70, 10));
+  CHECK_FALSE(f.may_send(8, 80, 10));
+  f.on_ok(parse_response("ok N5 P0 B0"));  // a full queue says less; the size stays
+  CHECK(f.queue() == 8);
+  CHECK(f.ok_numbers_acknowledge());
+
+  FlowControl a(FlowMode::Auto, 4, 128);
+  CHECK(a.effective() == FlowMode::Window);
+  a.on_ok(parse_response("ok N1 P15 B3"));
+  CHECK(a.effective() == FlowMode::AdvancedOk);
+  FlowControl plain(FlowMode::Auto, 4, 128);
+  plain.on_ok(parse_response("ok"));
+  CHECK(plain.effective() == FlowMode::Window);
+  CHECK(parse_flow_mode("window") == FlowMode::Window);
+  CHECK_FALSE(parse_flow_mode("fast").has_value());
+}

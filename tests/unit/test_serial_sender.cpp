@@ -1,0 +1,259 @@
+// The host protocol (gcode/serial/sender.hpp) against the Marlin model
+// (virtual_printer.hpp) in simulated time, without any I/O: deterministic,
+// and an hour of simulated printing costs milliseconds.
+//
+// The invariant: the commands the printer executed, in order, are exactly the
+// commands of the input (plus the final M400): nothing lost, nothing
+// duplicated, nothing reordered, whatever the flow mode and the faults.
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "gcode/line.hpp"
+#include "gcode/line_reader.hpp"
+#include "gcode/serial/protocol.hpp"
+#include "gcode/serial/sender.hpp"
+#include "gcode/serial/virtual_printer.hpp"
+#include "test_support.hpp"
+
+using namespace gcode::serial;
+
+namespace {
+
+// The commands gc-send would send for a fixture: comments, blank lines and
+// host commands stripped.
+std::vector<std::string> fixture_commands(const std::string& name, std::size_t limit) {
+  std::string text = gctest::read_file(gctest::fixture_path(name));
+  std::vector<std::string> out;
+  gcode::MemoryLineSplitter split(text);
+  gcode::RawLine raw;
+  while (split.next(raw) && out.size() < limit) {
+    gcode::Line line = gcode::Line::parse(raw.text);
+    if (line.kind == gcode::CommandKind::None || line.kind == gcode::CommandKind::Host || line.is_m(110)) continue;
+    std::string_view cmd = command_for_sending(line.code());
+    if (!cmd.empty()) out.emplace_back(cmd);
+  }
+  return out;
+}
+
+struct Outcome {
+  SenderState state;
+  std::string failure;
+  std::vector<std::string> executed;  // numbered commands, in the order executed
+  std::vector<long long> numbers;
+  VirtualPrinterStats printer;
+  SenderStats sender;
+  Position last_acked;
+  double seconds = 0;  // simulated
+};
+
+// Sender and printer connected back to back; the host reacts instantly.
+Outcome simulate(const std::vector<std::string>& commands, SenderConfig sc, VirtualPrinterConfig pc,
+                 double limit = 1e6, double emergency_at = -1) {
+  char* buffer = nullptr;
+  std::size_t size = 0;
+  std::FILE* log = open_memstream(&buffer, &size);
+  Outcome o;
+  {
+    VirtualPrinter printer(pc, log);
+    sc.link_bytes_per_second = pc.baud / 10;
+    Sender sender(sc, [](LogLevel, std::string_view m) {
+      if (std::getenv("GC_TRACE") != nullptr) std::fprintf(stderr, "%.*s\n", static_cast<int>(m.size()), m.data());
+    });
+    sender.set_trace(std::getenv("GC_TRACE") != nullptr);
+    double t = 0;
+    std::size_t next = 0;
+    std::string rx;
+    sender.start(t);
+    while (!sender.finished() && t < limit) {
+      while (sender.wants_input() && next < commands.size()) {
+        sender.submit(commands[next], next + 1, 1);
+        ++next;
+      }
+      if (next == commands.size()) sender.end_of_input();
+      if (emergency_at >= 0 && t >= emergency_at && !sender.emergency()) sender.emergency_stop();
+      sender.pump(t);
+      std::string_view out = sender.output();
+      if (!out.empty()) {
+        printer.receive(out, t);
+        sender.written(out.size(), t);
+      }
+      printer.advance(t);
+      std::string_view tx = printer.transmitted(t);
+      rx.append(tx);
+      printer.take(tx.size());
+      std::size_t pos = 0;
+      for (std::size_t nl; (nl = rx.find('\n', pos)) != std::string::npos; pos = nl + 1)
+        sender.on_line(std::string_view(rx).substr(pos, nl - pos), t);
+      rx.erase(0, pos);
+      if (!sender.output().empty() || sender.finished()) continue;
+      if (sender.deadline() <= t) {
+        sender.on_timer(t);
+        if (!sender.output().empty()) continue;
+      }
+      double next_t = std::min(printer.next_event(), sender.deadline());
+      if (next_t <= t) next_t = t + 1e-6;
+      t = next_t;
+      if (sender.deadline() <= t) sender.on_timer(t);
+    }
+    o.state = sender.state();
+    o.failure = sender.failure();
+    o.printer = printer.stats();
+    o.sender = sender.stats();
+    o.last_acked = sender.last_acknowledged();
+    o.seconds = t;
+  }
+  std::fclose(log);
+  std::string text(buffer, size);
+  std::free(buffer);
+  gcode::MemoryLineSplitter split(text);
+  gcode::RawLine raw;
+  while (split.next(raw)) {
+    // time, N, X, Y, Z, E, command
+    std::string_view s = raw.text;
+    std::size_t a = s.find('\t'), b = s.find('\t', a + 1);
+    long long n = std::stoll(std::string(s.substr(a + 1, b - a - 1)));
+    std::size_t c = b;
+    for (int i = 0; i < 4; ++i) c = s.find('\t', c + 1);
+    if (n < 0) continue;  // handshake, M105 after a timeout
+    o.numbers.push_back(n);
+    o.executed.emplace_back(s.substr(c + 1));
+  }
+  return o;
+}
+
+void require_exact(const Outcome& o, const std::vector<std::string>& commands) {
+  INFO("failure: " << o.failure << "; simulated seconds " << o.seconds << "; executed " << o.executed.size());
+  REQUIRE(o.state == SenderState::Done);
+  std::vector<std::string> expected = commands;
+  expected.emplace_back("M400");
+  REQUIRE(o.executed.size() == expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    INFO("command " << i);
+    REQUIRE(o.executed[i] == expected[i]);
+    REQUIRE(o.numbers[i] == static_cast<long long>(i + 1));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("sender: every flow mode delivers every command once, in order, without overrun", "[serial]") {
+  auto commands = fixture_commands("prusa_cube_0.2_mk3s_rel_zhop.gcode", 6000);
+  REQUIRE(commands.size() == 6000);
+  for (double baud : {250000.0, 115200.0}) {
+    for (FlowMode mode : {FlowMode::PingPong, FlowMode::Window, FlowMode::AdvancedOk, FlowMode::Auto}) {
+      SenderConfig sc;
+      sc.flow = mode;
+      VirtualPrinterConfig pc;
+      pc.baud = baud;
+      pc.advanced_ok = mode != FlowMode::Window;
+      pc.heat_rate = 1000;
+      INFO(flow_mode_name(mode) << " at " << baud);
+      Outcome o = simulate(commands, sc, pc);
+      require_exact(o, commands);
+      CHECK(o.printer.overrun_bytes == 0);
+      CHECK(o.printer.checksum_errors == 0);
+      CHECK(o.sender.resend_requests == 0);
+      CHECK(o.sender.timeouts == 0);
+    }
+  }
+}
+
+TEST_CASE("sender: window keeps the link busier than ping-pong on a link-bound printer", "[serial]") {
+  auto commands = fixture_commands("cura_cube_0.2_abs_zhop_skirt.gcode", 3000);
+  VirtualPrinterConfig pc;
+  pc.instant_moves = true;
+  pc.heat_rate = 1e6;
+  SenderConfig ping;
+  ping.flow = FlowMode::PingPong;
+  SenderConfig window;
+  window.flow = FlowMode::Window;
+  Outcome a = simulate(commands, ping, pc);
+  Outcome b = simulate(commands, window, pc);
+  require_exact(a, commands);
+  require_exact(b, commands);
+  // Simulated time, so this is deterministic: ping-pong waits a round trip per line.
+  CHECK(b.seconds < a.seconds * 0.95);
+}
+
+TEST_CASE("sender: 20000 lines with corrupted lines, lost oks, busy stalls, spurious resends and garbage", "[serial]") {
+  auto commands = fixture_commands("cura_vase_0.2_spiralize.gcode", 20000);
+  REQUIRE(commands.size() == 20000);
+  for (FlowMode mode : {FlowMode::Window, FlowMode::AdvancedOk, FlowMode::PingPong}) {
+    SenderConfig sc;
+    sc.flow = mode;
+    sc.timeout = 3;
+    VirtualPrinterConfig pc;
+    pc.advanced_ok = mode == FlowMode::AdvancedOk;
+    pc.heat_rate = 1000;
+    pc.corrupt = 0.01;
+    pc.drop_ok = 0.005;
+    pc.busy = 0.001;
+    pc.resend = 0.002;
+    pc.garbage = 0.002;
+    pc.seed = 7;
+    INFO(flow_mode_name(mode));
+    Outcome o = simulate(commands, sc, pc);
+    require_exact(o, commands);
+    CHECK(o.printer.corrupted > 100);
+    CHECK(o.printer.dropped_oks > 50);
+    CHECK(o.printer.spurious_resends > 10);
+    CHECK(o.sender.resend_requests > 100);
+  }
+}
+
+TEST_CASE("sender: a printer that stops answering ends in failure naming the last acknowledged line", "[serial]") {
+  auto commands = fixture_commands("cura_cube_0.2_abs_zhop_skirt.gcode", 3000);
+  SenderConfig sc;
+  sc.timeout = 2;
+  sc.max_timeouts = 3;
+  VirtualPrinterConfig pc;
+  pc.heat_rate = 1000;
+  pc.silent_after = 1500;
+  Outcome o = simulate(commands, sc, pc);
+  REQUIRE(o.state == SenderState::Failed);
+  CHECK(o.failure.find("stopped answering") != std::string::npos);
+  REQUIRE_FALSE(o.numbers.empty());
+  // The last executed line's ok went out before the printer fell silent.
+  CHECK(o.last_acked.number == o.numbers.back());
+  CHECK(o.failure.find("line " + std::to_string(o.last_acked.source_line) + " of the input") != std::string::npos);
+  CHECK(o.sender.timeouts == 4);
+}
+
+TEST_CASE("sender: lost oks alone are recovered by M105, the printer keeps printing", "[serial]") {
+  auto commands = fixture_commands("slic3r_cube_0.2_abs_reprap_skirt.gcode", 4000);
+  SenderConfig sc;
+  sc.flow = FlowMode::PingPong;
+  sc.timeout = 3;  // above Marlin's 2 s busy keepalive
+  VirtualPrinterConfig pc;
+  pc.heat_rate = 1000;
+  pc.drop_ok = 0.01;
+  Outcome o = simulate(commands, sc, pc);
+  require_exact(o, commands);
+  CHECK(o.sender.timeouts >= o.printer.dropped_oks);
+}
+
+TEST_CASE("sender: a fatal printer error stops the print", "[serial]") {
+  auto commands = fixture_commands("cura_cube_0.2_abs_zhop_skirt.gcode", 2000);
+  SenderConfig sc;
+  VirtualPrinterConfig pc;
+  pc.heat_rate = 1000;
+  pc.halt_after = 700;
+  Outcome o = simulate(commands, sc, pc);
+  REQUIRE(o.state == SenderState::Failed);
+  CHECK(o.failure.find("fatal error: Thermal Runaway") != std::string::npos);
+  CHECK(o.executed.size() < 700);
+}
+
+TEST_CASE("sender: M112 goes out at once and halts the printer", "[serial]") {
+  auto commands = fixture_commands("cura_cube_0.2_abs_zhop_skirt.gcode", 2000);
+  SenderConfig sc;
+  VirtualPrinterConfig pc;
+  pc.heat_rate = 1000;
+  Outcome o = simulate(commands, sc, pc, 1e6, 60.0);
+  CHECK(o.state == SenderState::Cancelled);
+  CHECK(o.executed.size() < commands.size());
+}

@@ -1,0 +1,120 @@
+// gc-virtual-printer: the Marlin model of gc-send's built-in virtual printer,
+// on a pseudo-terminal, so that any host (gc-send, printcore, OctoPrint) can
+// connect to it like a USB printer.
+#include <poll.h>
+#include <signal.h>
+#include <sys/signalfd.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "gcode/serial/event_loop.hpp"
+#include "gcode/serial/port.hpp"
+#include "gcode/serial/virtual_link.hpp"
+#include "gcode/serial/virtual_printer.hpp"
+#include "gcode/tool_io.hpp"
+#include "gcode/version.hpp"
+
+namespace {
+
+using namespace gcode::serial;
+
+struct Options {
+  std::string link;
+  std::string log;
+  std::vector<std::string> faults;
+  bool quiet = false;
+};
+
+int run(const Options& o, const VirtualPrinterConfig& config) {
+  sigset_t mask;
+  sigemptyset(&mask);
+  sigaddset(&mask, SIGINT);
+  sigaddset(&mask, SIGTERM);
+  sigaddset(&mask, SIGHUP);
+  sigprocmask(SIG_BLOCK, &mask, nullptr);
+  int sfd = signalfd(-1, &mask, SFD_CLOEXEC | SFD_NONBLOCK);
+
+  std::FILE* log = nullptr;
+  if (!o.log.empty()) {
+    log = std::fopen(o.log.c_str(), "w");
+    if (log == nullptr) throw std::runtime_error(fmt::format("cannot write {}", o.log));
+  }
+  EventLoop loop;
+  VirtualPrinter printer(config, log);
+  PseudoTerminal pty(o.link);
+  VirtualLink link(loop, printer, pty.master());
+  link.set_on_close([&loop] { loop.stop(); });
+  loop.add_fd(sfd, POLLIN, [&loop](short) { loop.stop(); });
+  if (!o.quiet)
+    std::fprintf(stderr, "gc-virtual-printer: %s -> %s, %g baud, time scale %g\n", o.link.c_str(),
+                 pty.slave_path().c_str(), config.baud, config.time_scale);
+  loop.run();
+
+  const VirtualPrinterStats& s = printer.stats();
+  if (log != nullptr) std::fclose(log);
+  if (!o.quiet)
+    std::fprintf(stderr,
+                 "gc-virtual-printer: executed %llu, accepted lines %llu, checksum errors %llu, line number errors "
+                 "%llu, overrun bytes %llu, planner starved %.2f %%%s\n",
+                 static_cast<unsigned long long>(s.executed), static_cast<unsigned long long>(s.accepted_lines),
+                 static_cast<unsigned long long>(s.checksum_errors),
+                 static_cast<unsigned long long>(s.line_number_errors),
+                 static_cast<unsigned long long>(s.overrun_bytes), 100 * printer.starvation(),
+                 link.closed() ? ", link dropped" : "");
+  ::close(sfd);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  VirtualPrinterConfig c;
+  CLI::App app{
+      "gc-virtual-printer: a simulated Marlin printer on a pseudo-terminal. PATH becomes a symlink to the\n"
+      "pty; connect any host to it. It models the link's byte rate, the RX buffer (overruns lose bytes), the\n"
+      "command queue, the planner, heating, Marlin's checksum/line-number errors and Resend replies, and can\n"
+      "inject faults. Runs until interrupted:\n"
+      "  gc-virtual-printer --link /tmp/printer --time-scale 20 & gc-send --port /tmp/printer part.gcode",
+      "gc-virtual-printer"};
+  app.add_option("--link", o.link, "Path of the symlink to create for the pseudo-terminal")
+      ->type_name("PATH")
+      ->required();
+  app.add_option("--baud", c.baud, "Simulated link speed (default 250000)")->type_name("BAUD");
+  app.add_option("--queue", c.queue, "Command queue entries, Marlin BUFSIZE (default 4)")->type_name("N");
+  app.add_option("--rx-buffer", c.rx_buffer, "Serial receive buffer, RX_BUFFER_SIZE (default 128)")->type_name("BYTES");
+  app.add_option("--planner", c.planner, "Planner blocks, BLOCK_BUFFER_SIZE (default 16)")->type_name("N");
+  app.add_option("--time-scale", c.time_scale, "Run this many times faster than real time (default 1)")
+      ->type_name("X");
+  app.add_flag("--advanced-ok", c.advanced_ok, "Answer \"ok N<n> P<planner free> B<queue free>\"");
+  app.add_flag("--instant-moves", c.instant_moves, "Moves take no time: only the link limits the speed");
+  app.add_option("--fault", o.faults,
+                 "Inject a fault, repeatable: corrupt=P drop-ok=P resend=P garbage=P busy=P (P per line), "
+                 "silent-after=N halt-after=N disconnect-after=N (N commands), seed=S")
+      ->type_name("KEY=VALUE");
+  app.add_option("--log", o.log, "Write every executed command: time, N, X, Y, Z, E, command (tab-separated)")
+      ->type_name("FILE");
+  app.add_flag("-q,--quiet", o.quiet, "No messages on standard error");
+  app.set_version_flag("--version", std::string("gc-virtual-printer ") + gcode::kVersion);
+  try {
+    app.parse(argc, argv);
+    std::string opts;
+    for (const std::string& f : o.faults) opts += f + ",";
+    parse_virtual_options(opts, c);
+    if (c.baud < 50 || c.queue < 1 || c.rx_buffer < 16 || c.planner < 1 || !(c.time_scale > 0))
+      throw std::invalid_argument("--baud, --queue, --rx-buffer, --planner and --time-scale need sensible values");
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "gc-virtual-printer: %s\n", e.what());
+    return 2;
+  } catch (const CLI::ParseError& e) {
+    int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+  return gcode::run_tool("gc-virtual-printer", [&] { return run(o, c); });
+}
