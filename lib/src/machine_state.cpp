@@ -38,26 +38,34 @@ void apply_motion(MachineState& s, const Line& line, Move& m) {
     }
   }
   if (f != nullptr && f->has_value && f->value > 0) s.feedrate = f->value * scale;
+  // The new position is worked out in scalars and only then stored: reading
+  // s.position back as a whole right after storing single axes defeats the
+  // CPU's store forwarding, which cost more than the rest of this function.
+  const double start[4] = {s.position[kX], s.position[kY], s.position[kZ], s.position[kE]};
+  double end[4] = {start[0], start[1], start[2], start[3]};
   for (int a = 0; a < 4; ++a) {
     const Word* w = axis[a];
     if (w == nullptr || !w->has_value) continue;
     double v = w->value * scale;
     bool relative = a == kE ? s.relative_e : s.relative_xyz;
     if (relative) {
-      s.position[a] += v;
+      end[a] += v;
     } else {
-      s.position[a] = v;
+      end[a] = v;
       s.known[a] = true;
     }
   }
-  m.end = s.position;
+  for (int a = 0; a < 4; ++a) {
+    s.position[a] = end[a];
+    m.end[a] = end[a];
+  }
   m.feedrate = s.feedrate;
-  m.filament = m.end[kE] - m.start[kE];
-  double dx = m.end[kX] - m.start[kX], dy = m.end[kY] - m.start[kY], dz = m.end[kZ] - m.start[kZ];
+  m.filament = end[kE] - start[kE];
+  double dx = end[kX] - start[kX], dy = end[kY] - start[kY], dz = end[kZ] - start[kZ];
   m.z_changed = dz != 0;
   if (m.kind == MoveKind::Arc) {
     bool has_ij = line.has('I') || line.has('J');
-    Arc arc = make_arc(m.start[kX], m.start[kY], m.end[kX], m.end[kY], line.number == 2, has_ij,
+    Arc arc = make_arc(start[kX], start[kY], end[kX], end[kY], line.number == 2, has_ij,
                        line.value_or('I', 0) * scale, line.value_or('J', 0) * scale, line.value_or('R', 0) * scale);
     m.is_arc_clockwise = line.number == 2;
     if (arc.valid) {
