@@ -2,9 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include "gcode/number.hpp"
 
@@ -186,32 +190,74 @@ int MachineLimits::load_profile_text(std::string_view text) {
   return used;
 }
 
+std::string_view MachineLimits::preset(std::string_view name) {
+  if (name == "marlin") return "# Marlin 2.1 defaults: the built-in starting point\n";
+  if (name == "cura")
+    return "# CuraEngine's fdmprinter machine defaults (unlimited feed rates)\n"
+           "machine_max_feedrate_x = 299792458000\nmachine_max_feedrate_y = 299792458000\n"
+           "machine_max_feedrate_z = 299792458000\nmachine_max_feedrate_e = 299792458000\n"
+           "machine_max_acceleration_x = 9000\nmachine_max_acceleration_y = 9000\n"
+           "machine_max_acceleration_z = 100\nmachine_max_acceleration_e = 10000\n"
+           "machine_acceleration = 4000\n"
+           "machine_max_jerk_xy = 20\nmachine_max_jerk_z = 0.4\nmachine_max_jerk_e = 5\n"
+           "# CuraEngine plans a firmware retraction (G10) as its retraction distance (5 mm here)\n"
+           "# at 25 mm/s, and the recover (G11) as no move at all.\n"
+           "fw_retract_length = 5\nfw_retract_speed = 25\nfw_unretract_extra = -5\n";
+  return {};
+}
+
+int MachineLimits::load_file_config(int fd) {
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) || st.st_size <= 0) return 0;
+  constexpr off_t kTail = 64 << 10;
+  off_t from = st.st_size > kTail ? st.st_size - kTail : 0;
+  std::vector<char> buffer(static_cast<std::size_t>(st.st_size - from));
+  std::size_t got = 0;
+  while (got < buffer.size()) {
+    ssize_t n = ::pread(fd, buffer.data() + got, buffer.size() - got, from + static_cast<off_t>(got));
+    if (n <= 0) break;
+    got += static_cast<std::size_t>(n);
+  }
+  std::string_view tail(buffer.data(), got);
+  std::size_t begin = tail.find("; prusaslicer_config = begin");
+  if (begin == std::string_view::npos) return 0;
+  tail = tail.substr(begin);
+  if (tail.find("; machine_limits_usage = ignore") != std::string_view::npos) return 0;
+  return load_profile_text(tail);
+}
+
 int MachineLimits::load_profile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(fmt::format("{}: cannot read the profile", path));
+  if (!in) {
+    std::string_view built_in = preset(path);
+    if (!built_in.empty()) return load_profile_text(built_in);
+    throw std::runtime_error(fmt::format("{}: cannot read the profile", path));
+  }
   std::ostringstream all;
   all << in.rdbuf();
   return load_profile_text(all.str());
 }
 
-std::string MachineLimits::describe() const {
-  std::string s = fmt::format(
-      "limits: firmware {}; max feed rate X{:g} Y{:g} Z{:g} E{:g} mm/s; max acceleration X{:g} Y{:g} Z{:g} E{:g} "
-      "mm/s^2\n",
+std::vector<std::string> MachineLimits::describe() const {
+  std::vector<std::string> lines;
+  lines.push_back(fmt::format(
+      "limits: firmware {}; max feed rate X{:g} Y{:g} Z{:g} E{:g} mm/s; max acceleration X{:g} Y{:g} Z{:g} E{:g} mm/s^2",
       firmware == Firmware::Marlin ? "Marlin" : "RepRapFirmware", max_feedrate[0], max_feedrate[1], max_feedrate[2],
-      max_feedrate[3], max_acceleration[0], max_acceleration[1], max_acceleration[2], max_acceleration[3]);
-  s += fmt::format("limits: acceleration print {:g} travel {:g} retract {:g} mm/s^2", print_acceleration,
-                   travel_acceleration, retract_acceleration);
+      max_feedrate[3], max_acceleration[0], max_acceleration[1], max_acceleration[2], max_acceleration[3]));
+  std::string s = fmt::format("limits: acceleration print {:g} travel {:g} retract {:g} mm/s^2", print_acceleration,
+                              travel_acceleration, retract_acceleration);
   if (max_print_acceleration > 0 || max_travel_acceleration > 0 || max_retract_acceleration > 0)
     s += fmt::format(" (caps {:g}/{:g}/{:g})", max_print_acceleration, max_travel_acceleration,
                      max_retract_acceleration);
-  s += '\n';
+  lines.push_back(std::move(s));
   if (junction_deviation > 0)
-    s += fmt::format("limits: junction deviation {:g} mm", junction_deviation);
+    s = fmt::format("limits: junction deviation {:g} mm", junction_deviation);
   else
-    s += fmt::format("limits: classic jerk X{:g} Y{:g} Z{:g} E{:g} mm/s", jerk[0], jerk[1], jerk[2], jerk[3]);
-  s += fmt::format("; min feed rate {:g}, travel {:g} mm/s", min_feedrate, min_travel_feedrate);
-  return s;
+    s = fmt::format("limits: classic jerk X{:g} Y{:g} Z{:g} E{:g} mm/s", jerk[0], jerk[1], jerk[2], jerk[3]);
+  s += fmt::format("; min feed rate {:g}, travel {:g} mm/s; firmware retraction {:g} mm at {:g} mm/s", min_feedrate,
+                   min_travel_feedrate, fw_retract_length, fw_retract_speed);
+  lines.push_back(std::move(s));
+  return lines;
 }
 
 }  // namespace gcode

@@ -9,10 +9,13 @@
 #include "gcode/layer_extract.hpp"
 #include "gcode/layer_range.hpp"
 #include "gcode/layer_report.hpp"
+#include "gcode/layer_svg.hpp"
 #include "gcode/layer_table.hpp"
+#include "gcode/layer_time.hpp"
 #include "gcode/layer_tracker.hpp"
 #include "gcode/line_reader.hpp"
 #include "gcode/output_buffer.hpp"
+#include "gcode/printer_limits.hpp"
 #include "gcode/tool_io.hpp"
 #include "gcode/version.hpp"
 
@@ -31,6 +34,15 @@ struct Options {
   double filament_diameter = 1.75;
   bool quiet = false;
   int verbose = 0;
+  // --time, --svg, --svg-sheet
+  bool time = false;
+  std::string profile;
+  bool no_heat_time = false;
+  std::string svg;
+  std::string svg_sheet;
+  std::string svg_out;
+  bool no_travel = false;
+  double svg_size = 800;
 };
 
 // Feeds the table and, when cutting, the extractor from one tracker pass.
@@ -40,6 +52,7 @@ class Collector : public gcode::LayerSink {
   void on_layer(const gcode::LayerInfo& layer, const gcode::MachineState& before) override {
     table.on_layer(layer);
     if (extractor_) extractor_->on_layer(layer, before);
+    if (drawer) drawer->on_layer(layer);
   }
   void on_end_code(std::uint64_t line, std::uint64_t offset, const gcode::MachineState& before) override {
     table.on_end_code();
@@ -48,8 +61,12 @@ class Collector : public gcode::LayerSink {
   void on_line(const gcode::TrackedLine& t) override {
     table.on_line(t);
     if (extractor_) extractor_->on_line(t);
+    if (timer) timer->on_line(t);
+    if (drawer) drawer->on_line(t);
   }
   gcode::LayerTable table;
+  gcode::LayerTimer* timer = nullptr;    // --time, --svg
+  gcode::LayerDrawer* drawer = nullptr;  // --svg, --svg-sheet
 
  private:
   gcode::LayerExtractor* extractor_;
@@ -65,6 +82,44 @@ int count_layers(gcode::InputFile& input, const gcode::LayerMarkers& markers) {
   gcode::track_all(reader, tracker);
   input.rewind();
   return tracker.layer_count();
+}
+
+// --svg / --svg-sheet: the pictures, to the path(s) of --svg-out (or stdout).
+int write_pictures(const Options& o, gcode::LayerDrawer& drawer, const gcode::LayerTimes& times,
+                   const gcode::LayerTracker& tracker, const gcode::InputFile& input, const gcode::LayerRange& range,
+                   int layers) {
+  std::vector<gcode::LayerDrawing>& drawings = drawer.drawings();
+  if (range.highest_named() > layers)
+    throw std::runtime_error(fmt::format("layer {} does not exist: {} has {} layers", range.highest_named(),
+                                         input.name(), layers));
+  if (drawings.empty()) throw std::runtime_error("no layer matches the selection");
+  gcode::SvgOptions svg;
+  svg.travel = !o.no_travel;
+  svg.size_px = o.svg_size;
+  for (int i = 0; i < tracker.feature_count(); ++i) svg.feature_names.push_back(tracker.feature_name(i));
+  gcode::PrinterLimits printer;
+  if (gcode::scan_file_limits(input.fd(), printer) && printer.has_bed)
+    svg.bed = {{printer.bed.min_x, printer.bed.min_y}, {printer.bed.max_x, printer.bed.min_y},
+               {printer.bed.max_x, printer.bed.max_y}, {printer.bed.min_x, printer.bed.max_y}};
+  for (gcode::LayerDrawing& d : drawings) {
+    auto i = static_cast<std::size_t>(d.layer - 1);
+    d.seconds = i < times.layers.size() ? times.layers[i] : -1;
+  }
+  auto write = [](const std::string& path, const std::string& text) {
+    gcode::OutputFile file(path, std::string());
+    gcode::OutputBuffer buffer(file.fd());
+    buffer.write(text);
+    buffer.flush();
+    file.commit();
+  };
+  if (!o.svg_sheet.empty()) {
+    write(o.svg_out, gcode::layer_sheet_svg(drawings, svg));
+  } else {
+    if (drawings.size() > 1 && !gcode::has_layer_placeholder(o.svg_out))
+      throw std::runtime_error("several layers selected: give --svg-out a pattern such as layer-{}.svg");
+    for (const gcode::LayerDrawing& d : drawings) write(gcode::expand_layer_pattern(o.svg_out, d.layer), gcode::layer_svg(d, svg));
+  }
+  return 0;
 }
 
 void check_has_layers(const Collector& c, const gcode::InputFile& input) {
@@ -88,6 +143,25 @@ int run(const Options& o) {
     input.make_seekable();
     total = count_layers(input, markers);
   }
+  std::optional<gcode::LayerRange> picture_range;
+  if (!o.svg.empty() || !o.svg_sheet.empty()) {
+    picture_range = gcode::LayerRange::parse(o.svg.empty() ? o.svg_sheet : o.svg);
+    if (picture_range->needs_total() && total == 0) {
+      input.make_seekable();
+      total = count_layers(input, markers);
+    }
+  }
+  std::optional<gcode::LayerTimer> timer;
+  if (o.time || picture_range) {
+    gcode::EstimatorOptions estimate;
+    estimate.heat_time = !o.no_heat_time;
+    estimate.limits.load_file_config(input.fd());
+    if (!o.profile.empty()) estimate.limits.load_profile(o.profile);
+    timer.emplace(estimate);
+  }
+  std::optional<gcode::LayerDrawer> drawer;
+  if (picture_range)
+    drawer.emplace([&](int layer) { return picture_range->contains(layer, total); }, o.filament_diameter);
 
   std::optional<gcode::OutputFile> out_file;
   std::optional<gcode::OutputBuffer> out;
@@ -100,11 +174,21 @@ int run(const Options& o) {
     });
   }
   Collector collector(extractor ? &*extractor : nullptr);
+  if (timer) collector.timer = &*timer;
+  if (drawer) collector.drawer = &*drawer;
   gcode::LayerTracker tracker(collector, markers);
   gcode::LineReader reader(input.fd());
   gcode::track_all(reader, tracker);
   check_has_layers(collector, input);
   int layers = static_cast<int>(collector.table.layers().size());
+  if (timer) {
+    timer->finish();
+    for (const std::string& line : timer->estimator().limits().describe()) diag.info(line);
+  }
+  if (drawer) {
+    drawer->finish();
+    return write_pictures(o, *drawer, timer->times(), tracker, input, *picture_range, layers);
+  }
 
   if (cutting) {
     if (range && range->highest_named() > layers)
@@ -124,6 +208,7 @@ int run(const Options& o) {
     return 0;
   }
   gcode::ReportOptions report{input.name(), o.density, o.filament_diameter, tracker.mode()};
+  if (timer) report.times = &timer->times();
   std::string text = o.json ? gcode::layer_table_json(collector.table, tracker, report)
                             : gcode::layer_table_text(collector.table, tracker, report);
   gcode::OutputBuffer stdout_buffer(1);
@@ -161,6 +246,21 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--filament-diameter", o.filament_diameter, "Filament diameter in mm (default 1.75)")
       ->check(CLI::PositiveNumber);
+  app.add_flag("--time", o.time,
+               "Add the estimated print time per layer and cumulative (h:mm:ss), and the total; "
+               "limits from the file's M201/M203/M204/M205, else --profile, else Marlin defaults");
+  app.add_option("--profile", o.profile,
+                 "Machine limits: a key = value file (a PrusaSlicer config.ini works), or the built-in cura or marlin")
+      ->type_name("FILE");
+  app.add_flag("--no-heat-time", o.no_heat_time, "Leave heating waits (M109, M190) out of the time, as slicers do");
+  app.add_option("--svg", o.svg, "Draw layer(s) RANGE from above as SVG (to --svg-out, or standard output)")
+      ->type_name("RANGE");
+  app.add_option("--svg-sheet", o.svg_sheet, "Draw the layers in RANGE on one SVG page, as a grid")->type_name("RANGE");
+  app.add_option("--svg-out", o.svg_out, "Where the SVG goes; with several layers a pattern such as layer-{}.svg")
+      ->type_name("PATH");
+  app.add_flag("--no-travel", o.no_travel, "Leave travel moves out of the pictures");
+  app.add_option("--svg-size", o.svg_size, "Size of a layer's picture in pixels (default 800)")
+      ->check(CLI::Range(50.0, 20000.0));
   app.add_flag("-q,--quiet", o.quiet, "Only errors on standard error");
   app.add_flag("-v,--verbose", o.verbose, "More messages on standard error");
   app.set_version_flag("--version", std::string("gc-layers ") + gcode::kVersion);
@@ -173,6 +273,13 @@ int main(int argc, char** argv) {
       throw CLI::ValidationError("--extract", "cutting does not combine with --json or --where");
     if (o.in_place && !o.output.empty()) throw CLI::ValidationError("-o", "-o and -i exclude each other");
     if (!o.extract.empty()) gcode::LayerRange::parse(o.extract);
+    bool pictures = !o.svg.empty() || !o.svg_sheet.empty();
+    if (!o.svg.empty() && !o.svg_sheet.empty()) throw CLI::ValidationError("--svg", "--svg and --svg-sheet exclude each other");
+    if (pictures && (!o.extract.empty() || !o.z_range.empty() || o.json || o.where > 0))
+      throw CLI::ValidationError("--svg", "pictures do not combine with --extract, --z-range, --json or --where");
+    if (!o.svg_out.empty() && !pictures) throw CLI::ValidationError("--svg-out", "--svg-out goes with --svg or --svg-sheet");
+    if (!o.svg.empty()) gcode::LayerRange::parse(o.svg);
+    if (!o.svg_sheet.empty()) gcode::LayerRange::parse(o.svg_sheet);
     if (!o.z_range.empty()) gcode::ZRange::parse(o.z_range);
   } catch (const std::invalid_argument& e) {
     std::fprintf(stderr, "gc-layers: %s\n", e.what());

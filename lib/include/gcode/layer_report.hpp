@@ -18,9 +18,13 @@
 //                     "filament_mm" (net), "extruded_mm", "path_mm", "travel_mm",
 //                     "moves", "features": [names], "empty": bool }
 // Lines count from 1; a region with no line has first_line 0.
+// With --time (ReportOptions::times set): every Region and Layer also has
+// "time_s", every Layer "cumulative_s" (from the start of the file to its
+// end), and the summary "time_s" and "time" ("h:mm:ss").
 #include <string>
 
 #include "gcode/layer_table.hpp"
+#include "gcode/layer_time.hpp"
 
 namespace gcode {
 
@@ -29,6 +33,7 @@ struct ReportOptions {
   double density = 1.24;            // g/cm3 (PLA)
   double filament_diameter = 1.75;  // mm
   LayerMode mode = LayerMode::Markers;
+  const LayerTimes* times = nullptr;  // --time: time columns and the total
 };
 
 class LayerTracker;

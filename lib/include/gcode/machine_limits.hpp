@@ -5,16 +5,17 @@
 //
 // Three sources, later ones overriding earlier ones:
 //   1. Marlin's defaults (Configuration.h of Marlin 2.1, classic jerk on);
-//   2. a profile file of `key = value` lines (--profile): our own keys, or
+//   2. a profile of `key = value` lines (--profile, or the config block at the
+//      end of a PrusaSlicer G-code file): our own keys, or
 //      PrusaSlicer's (`machine_max_acceleration_x = 9000,1000`, first value =
-//      normal mode), so a PrusaSlicer config.ini, or the config block at the
-//      end of its G-code, works as a profile as it is;
+//      normal mode), so a PrusaSlicer config.ini works as a profile as it is;
 //   3. the limit commands in the G-code itself, as the firmware would obey
 //      them: M201 M203 M204 M205 (Marlin), M566 and the mm/min M203 of
 //      RepRapFirmware, M207 M208 (firmware retraction).
 #include <array>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "gcode/line.hpp"
 
@@ -58,11 +59,21 @@ struct MachineLimits {
   // Reads a profile: `key = value` lines, optionally behind "; " (G-code
   // comments) or "#" comments. Returns the number of keys used; throws
   // std::runtime_error when the file cannot be read.
+  // `path` may also name a built-in profile (see preset) when no such file exists.
   int load_profile(const std::string& path);
   int load_profile_text(std::string_view text);
+  // Built-in profiles: "marlin" (the defaults above) and "cura" (CuraEngine's
+  // fdmprinter machine defaults plus the way CuraEngine 4.13 counts firmware
+  // retraction: what its ;TIME: assumes). Empty for an unknown name.
+  static std::string_view preset(std::string_view name);
+  // The PrusaSlicer config block at the end of a regular file (its last 64 kB,
+  // read with pread: the file offset is left alone), applied as a profile
+  // unless it says machine_limits_usage = ignore. Returns the keys used; 0
+  // for a pipe or a file without the block.
+  int load_file_config(int fd);
 
   // One line per group, for -v.
-  std::string describe() const;
+  std::vector<std::string> describe() const;
 
  private:
   bool m203_in_mm_per_s_ = false;  // an M203 was read before the firmware was known
