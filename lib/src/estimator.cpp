@@ -21,12 +21,13 @@ double trapezoid_time(double length, double v0, double v1, double vn, double a) 
   if (length <= 0) return 0;
   if (vn <= kTiny) return 0;
   if (a <= kTiny) return length / vn;
-  double accel_dist = (vn * vn - v0 * v0) / (2 * a);
-  double decel_dist = (vn * vn - v1 * v1) / (2 * a);
-  if (accel_dist + decel_dist <= length) return (vn - v0) / a + (vn - v1) / a + (length - accel_dist - decel_dist) / vn;
-  double peak = std::sqrt(a * length + (v0 * v0 + v1 * v1) / 2);
+  double inv_a = 1 / a;
+  double accel_dist = (vn * vn - v0 * v0) * 0.5 * inv_a;
+  double decel_dist = (vn * vn - v1 * v1) * 0.5 * inv_a;
+  if (accel_dist + decel_dist <= length) return (2 * vn - v0 - v1) * inv_a + (length - accel_dist - decel_dist) / vn;
+  double peak = std::sqrt(a * length + (v0 * v0 + v1 * v1) * 0.5);
   if (peak < std::max(v0, v1)) return 2 * length / (v0 + v1);  // rounding: a plain ramp
-  return (peak - v0) / a + (peak - v1) / a;
+  return (2 * peak - v0 - v1) * inv_a;
 }
 
 // The speed reachable from v over `length` mm at acceleration a.
@@ -126,8 +127,9 @@ void Estimator::add_move(const Move& move) {
   std::array<double, 4> axis_speed{};
   std::array<double, 4> unit{};
   double speed_factor = 1;
+  double inv_length = 1 / length;
   for (std::size_t a = 0; a < 4; ++a) {
-    double ratio = delta[a] / length;
+    double ratio = delta[a] * inv_length;
     double r = std::fabs(ratio);
     if (r > kTiny) {
       if (nominal * r > limits_.max_feedrate[a] && limits_.max_feedrate[a] > 0)
