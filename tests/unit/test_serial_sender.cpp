@@ -12,30 +12,19 @@
 #include <string>
 #include <vector>
 
-#include "gcode/line.hpp"
-#include "gcode/line_reader.hpp"
 #include "gcode/serial/protocol.hpp"
 #include "gcode/serial/sender.hpp"
 #include "gcode/serial/virtual_printer.hpp"
+#include "serial_check.hpp"
 #include "test_support.hpp"
 
 using namespace gcode::serial;
 
 namespace {
 
-// The commands gc-send would send for a fixture: comments, blank lines and
-// host commands stripped.
 std::vector<std::string> fixture_commands(const std::string& name, std::size_t limit) {
-  std::string text = gctest::read_file(gctest::fixture_path(name));
   std::vector<std::string> out;
-  gcode::MemoryLineSplitter split(text);
-  gcode::RawLine raw;
-  while (split.next(raw) && out.size() < limit) {
-    gcode::Line line = gcode::Line::parse(raw.text);
-    if (line.kind == gcode::CommandKind::None || line.kind == gcode::CommandKind::Host || line.is_m(110)) continue;
-    std::string_view cmd = command_for_sending(line.code());
-    if (!cmd.empty()) out.emplace_back(cmd);
-  }
+  for (auto& c : gctest::commands_of(gctest::read_file(gctest::fixture_path(name)), limit)) out.push_back(c.text);
   return out;
 }
 
@@ -109,19 +98,9 @@ Outcome simulate(const std::vector<std::string>& commands, SenderConfig sc, Virt
   std::fclose(log);
   std::string text(buffer, size);
   std::free(buffer);
-  gcode::MemoryLineSplitter split(text);
-  gcode::RawLine raw;
-  while (split.next(raw)) {
-    // time, N, X, Y, Z, E, command
-    std::string_view s = raw.text;
-    std::size_t a = s.find('\t'), b = s.find('\t', a + 1);
-    long long n = std::stoll(std::string(s.substr(a + 1, b - a - 1)));
-    std::size_t c = b;
-    for (int i = 0; i < 4; ++i) c = s.find('\t', c + 1);
-    if (n < 0) continue;  // handshake, M105 after a timeout
-    o.numbers.push_back(n);
-    o.executed.emplace_back(s.substr(c + 1));
-  }
+  gctest::ExecutedLog executed = gctest::parse_executed_log(text);
+  o.numbers = executed.numbers;
+  o.executed = executed.commands;
   return o;
 }
 

@@ -94,6 +94,8 @@ int main(int argc, char** argv) {
       ->type_name("X");
   app.add_flag("--advanced-ok", c.advanced_ok, "Answer \"ok N<n> P<planner free> B<queue free>\"");
   app.add_flag("--instant-moves", c.instant_moves, "Moves take no time: only the link limits the speed");
+  app.add_option("--heat-rate", c.heat_rate, "Heating in degrees per second (default 10; the bed a third of it)")
+      ->type_name("DEG_PER_S");
   app.add_option("--fault", o.faults,
                  "Inject a fault, repeatable: corrupt=P drop-ok=P resend=P garbage=P busy=P (P per line), "
                  "silent-after=N halt-after=N disconnect-after=N (N commands), seed=S")

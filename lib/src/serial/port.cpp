@@ -37,7 +37,7 @@ int open_serial_port(const std::string& path, const PortOptions& options) {
   if (!options.reset) tio.c_cflag &= ~static_cast<tcflag_t>(HUPCL);  // closing must not restart the board either
   tio.c_ispeed = static_cast<speed_t>(options.baud);
   tio.c_ospeed = static_cast<speed_t>(options.baud);
-  tio.c_cc[VMIN] = 0;
+  tio.c_cc[VMIN] = 1;  // with O_NONBLOCK: EAGAIN when empty; VMIN 0 would read as end of file
   tio.c_cc[VTIME] = 0;
   if (ioctl(fd, TCSETS2, &tio) != 0) {
     int e = errno;

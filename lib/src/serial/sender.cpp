@@ -238,7 +238,7 @@ void Sender::on_resend(long long n, double now) {
   settle_from_ = now;
   // Long enough for the stale lines to reach the printer and be rejected.
   double rate = std::max(1.0, config_.link_bytes_per_second);
-  settle_quiet_ = std::clamp(2.0 * static_cast<double>(stale_bytes + output().size() + 64) / rate, 0.005, 0.5);
+  settle_quiet_ = std::clamp(2.0 * static_cast<double>(stale_bytes + output().size() + 64) / rate, 0.002, 0.5);
   log_(LogLevel::Info, fmt::format("resend from {}", describe({n, slot(n).source_line, slot(n).layer})));
 }
 
@@ -257,6 +257,9 @@ void Sender::on_capability(std::string_view text) {
     };
     firmware_.time_scale = number_after("TIME_SCALE:");
     firmware_.baud = number_after("BAUD:");
+    // A simulated printer's link runs at its own pace, not the port's.
+    if (firmware_.time_scale > 0 && firmware_.baud > 0)
+      config_.link_bytes_per_second = firmware_.baud / 10 * firmware_.time_scale;
   }
   if (cap("ADVANCED_OK")) {
     firmware_.advanced_ok = true;

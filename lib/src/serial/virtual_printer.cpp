@@ -150,9 +150,17 @@ void VirtualPrinter::take(std::size_t n) {
   }
 }
 
+bool VirtualPrinter::heated() const {
+  // Within a degree, as Marlin's TEMP_WINDOW; the small slack absorbs rounding
+  // of the heating steps, which would otherwise leave the wait a hair short.
+  if (heating_bed_) return bed_ >= bed_target_ - 1 - 1e-6;
+  return hotend_ >= hotend_target_ - 1 - 1e-6;
+}
+
 double VirtualPrinter::heat_done_time() const {
-  if (heating_bed_) return bed_ >= bed_target_ - 1 ? temp_time_ : temp_time_ + (bed_target_ - 1 - bed_) / (config_.heat_rate / 3);
-  return hotend_ >= hotend_target_ - 1 ? temp_time_ : temp_time_ + (hotend_target_ - 1 - hotend_) / config_.heat_rate;
+  if (heated()) return temp_time_;
+  if (heating_bed_) return temp_time_ + (bed_target_ - 1 - bed_) / (config_.heat_rate / 3);
+  return temp_time_ + (hotend_target_ - 1 - hotend_) / config_.heat_rate;
 }
 
 double VirtualPrinter::next_event() const {
@@ -527,9 +535,7 @@ bool VirtualPrinter::still_waiting(double t) {
     case Wait::Stall: return t < wait_until_;
     case Wait::Heating: {
       update_temperatures(t);
-      double temp = heating_bed_ ? bed_ : hotend_;
-      double target = heating_bed_ ? bed_target_ : hotend_target_;
-      bool done = temp >= target - 1;
+      bool done = heated();
       if (done && autoreport_ <= 0) next_report_ = kNever;
       return !done;
     }

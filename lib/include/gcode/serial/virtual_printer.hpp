@@ -125,6 +125,7 @@ class VirtualPrinter {
   void send_ok(long long number);
   void update_temperatures(double t);
   std::string temperature_report() const;
+  bool heated() const;
   double heat_done_time() const;
   bool chance(double p);
 

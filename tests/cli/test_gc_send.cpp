@@ -1,0 +1,164 @@
+// gc-send against gc-virtual-printer through a real pseudo-terminal, on real
+// subdivided slicer output: the commands the printer executed are exactly the
+// input's, in order, for every flow mode at 250000 and 115200 baud, also with
+// faults; a silent printer and a fatal error end with exit status 1.
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "serial_check.hpp"
+#include "test_support.hpp"
+
+using gctest::quote;
+using gctest::run;
+using gctest::tool_path;
+
+namespace {
+
+// 20000 lines of a fixture cut into pieces of at most 0.5 mm by gc-subdivide,
+// written once per test run.
+const std::string& subdivided_file() {
+  static std::string path;
+  if (path.empty()) {
+    std::string dir = gctest::temp_dir();
+    path = dir + "/subdivided.gcode";
+    auto r = run(quote(tool_path("gc-subdivide")) + " --max 0.5 " +
+                 quote(gctest::fixture_path("prusa_cube_0.2_mk3s_rel_zhop.gcode")) + " | head -n 20000 > " + quote(path));
+    REQUIRE(r.status == 0);
+  }
+  return path;
+}
+
+struct PtyRun {
+  gctest::RunResult result;
+  gctest::ExecutedLog log;
+};
+
+// Starts gc-virtual-printer on a pty, runs gc-send against it, stops the printer.
+PtyRun send_through_pty(const std::string& file, const std::string& send_args, const std::string& printer_args) {
+  std::string dir = gctest::temp_dir();
+  std::string link = dir + "/printer";
+  std::string log = dir + "/executed.log";
+  std::string script = quote(tool_path("gc-virtual-printer")) + " -q --link " + quote(link) + " --log " + quote(log) +
+                       " " + printer_args + " & vp=$!\n"
+                       "for i in $(seq 500); do [ -e " + quote(link) + " ] && break; sleep 0.01; done\n" +
+                       quote(tool_path("gc-send")) + " --port " + quote(link) + " " + send_args + " " + quote(file) +
+                       "; status=$?\nkill $vp; wait $vp; exit $status";
+  PtyRun r;
+  r.result = run(script);
+  r.log = gctest::parse_executed_log(gctest::read_file(log));
+  return r;
+}
+
+void require_exact(const PtyRun& r, const std::vector<gctest::SentCommand>& expected) {
+  INFO(r.result.err);
+  REQUIRE(r.result.status == 0);
+  REQUIRE(r.log.commands.size() == expected.size() + 1);
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    INFO("command " << i);
+    REQUIRE(r.log.commands[i] == expected[i].text);
+    REQUIRE(r.log.numbers[i] == static_cast<long long>(i + 1));
+  }
+  CHECK(r.log.commands.back() == "M400");
+}
+
+}  // namespace
+
+// Every flow mode at one baud rate: the executed commands equal the input's.
+static void every_flow_mode(const char* baud) {
+  const std::string& file = subdivided_file();
+  auto expected = gctest::commands_of(gctest::read_file(file));
+  REQUIRE(expected.size() > 15000);
+  for (const char* flow : {"ping-pong", "window", "advanced-ok", "auto"}) {
+    INFO(flow << " at " << baud);
+    // Instant moves and a high time scale: the run takes as long as the
+    // round trips through the pty (the planner is covered in simulated time
+    // by tests/unit/test_serial_sender.cpp).
+    std::string printer = std::string("--time-scale 1000 --instant-moves --heat-rate 1000 --baud ") + baud;
+    if (std::string(flow) != "window") printer += " --advanced-ok";
+    PtyRun r = send_through_pty(file, std::string("-q --flow ") + flow + " --baud " + baud, printer);
+    require_exact(r, expected);
+  }
+}
+
+TEST_CASE("gc-send: 20000 subdivided lines through a pty at 250000 baud, every flow mode", "[gc-send]") {
+  every_flow_mode("250000");
+}
+
+TEST_CASE("gc-send: 20000 subdivided lines through a pty at 115200 baud, every flow mode", "[gc-send]") {
+  every_flow_mode("115200");
+}
+
+TEST_CASE("gc-send: corrupted lines, lost oks, busy stalls, spurious resends: nothing lost, duplicated or reordered",
+          "[gc-send]") {
+  const std::string& file = subdivided_file();
+  auto expected = gctest::commands_of(gctest::read_file(file));
+  std::string faults =
+      "--fault corrupt=0.01 --fault drop-ok=0.005 --fault busy=0.001 --fault resend=0.002 --fault garbage=0.002";
+  for (const char* flow : {"window", "advanced-ok"}) {
+    INFO(flow);
+    std::string printer = "--time-scale 1000 --instant-moves --heat-rate 1000 " + faults;
+    if (std::string(flow) == "advanced-ok") printer += " --advanced-ok";
+    // A lost ok costs one timeout in window mode (ADVANCED_OK's N needs none).
+    PtyRun r = send_through_pty(file, std::string("--flow ") + flow + " --timeout 0.02", printer);
+    require_exact(r, expected);
+    CHECK(r.result.err.find("resends 0,") == std::string::npos);
+  }
+}
+
+TEST_CASE("gc-send: a printer that stops answering: exit 1 naming the last acknowledged line and layer", "[gc-send]") {
+  const std::string& file = subdivided_file();
+  auto expected = gctest::commands_of(gctest::read_file(file));
+  PtyRun r = send_through_pty(file, "--timeout 0.2 --max-timeouts 2",
+                              "--time-scale 200 --heat-rate 1000 --fault silent-after=3000");
+  CHECK(r.result.status == 1);
+  INFO(r.result.err);
+  CHECK(r.result.err.find("gc-send: the printer stopped answering") != std::string::npos);
+  REQUIRE_FALSE(r.log.numbers.empty());
+  // The last executed line's ok went out before the printer fell silent.
+  std::size_t last = static_cast<std::size_t>(r.log.numbers.back());
+  std::string where = "last acknowledged: line " + std::to_string(expected[last - 1].source_line) + " of the input (layer ";
+  CHECK(r.result.err.find(where) != std::string::npos);
+}
+
+TEST_CASE("gc-send: a fatal printer error stops sending with exit 1", "[gc-send]") {
+  const std::string& file = subdivided_file();
+  PtyRun r = send_through_pty(file, "", "--time-scale 200 --heat-rate 1000 --fault halt-after=2000");
+  CHECK(r.result.status == 1);
+  CHECK(r.result.err.find("fatal error: Thermal Runaway") != std::string::npos);
+  CHECK(r.log.commands.size() < 2000);
+}
+
+TEST_CASE("gc-send: the built-in virtual printer, host commands kept back, summary", "[gc-send]") {
+  std::string dir = gctest::temp_dir();
+  std::string log = dir + "/log";
+  std::string input = "; a comment\nG28\n\n@pause\nG1 X10 Y10 F6000 ; move\nN5 G1 X20*99\nM110 N7\nM105\n";
+  auto r = run(quote(tool_path("gc-send")) + " -v --port virtual:time-scale=50,log=" + log, input);
+  INFO(r.err);
+  CHECK(r.status == 0);
+  CHECK(r.err.find("host command '@pause' not sent") != std::string::npos);
+  CHECK(r.err.find("M110 not sent") != std::string::npos);
+  CHECK(r.err.find("gc-send: summary: lines 5,") != std::string::npos);
+  auto executed = gctest::parse_executed_log(gctest::read_file(log));
+  CHECK(executed.commands == std::vector<std::string>{"G28", "G1 X10 Y10 F6000", "G1 X20", "M105", "M400"});
+}
+
+TEST_CASE("gc-send: Ctrl-C stops, a second Ctrl-C sends M112", "[gc-send]") {
+  std::string file = gctest::fixture_path("cura_cube_0.2_abs_zhop_skirt.gcode");
+  std::string script = quote(tool_path("gc-send")) + " --port virtual " + quote(file) +
+                       " & p=$!; sleep 0.5; kill -INT $p; sleep 0.1; kill -INT $p; wait $p";
+  auto r = run(script);
+  CHECK(r.status == 130);
+  CHECK(r.err.find("emergency stop: M112 sent") != std::string::npos);
+}
+
+TEST_CASE("gc-send: usage errors exit 2; --list-ports works without hardware", "[gc-send]") {
+  CHECK(run(quote(tool_path("gc-send")) + " --flow fast").status == 2);
+  CHECK(run(quote(tool_path("gc-send")) + " --port virtual:warp=9").status == 2);
+  CHECK(run(quote(tool_path("gc-send")) + " --baud 0").status == 2);
+  CHECK(run(quote(tool_path("gc-send")) + " --list-ports").status == 0);
+  auto r = run(quote(tool_path("gc-send")) + " --port /nonexistent/tty", "G28\n");
+  CHECK(r.status == 1);
+  CHECK(r.err.find("gc-send: cannot open /nonexistent/tty") != std::string::npos);
+  CHECK(run(quote(tool_path("gc-virtual-printer")) + " --link").status == 2);
+}

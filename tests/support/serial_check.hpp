@@ -1,0 +1,62 @@
+#pragma once
+// Shared by the serial tests: what gc-send should send for a G-code text, and
+// what the virtual printer's log says it executed.
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "gcode/line.hpp"
+#include "gcode/line_reader.hpp"
+#include "gcode/serial/protocol.hpp"
+
+namespace gctest {
+
+struct SentCommand {
+  std::string text;           // as sent: no comment, no N, no checksum
+  std::uint64_t source_line;  // 1-based line in the text
+};
+
+// The commands of `text` gc-send sends, in order (comments, blank lines,
+// host commands and M110 left out), at most `limit`.
+inline std::vector<SentCommand> commands_of(std::string_view text, std::size_t limit = static_cast<std::size_t>(-1)) {
+  std::vector<SentCommand> out;
+  gcode::MemoryLineSplitter split(text);
+  gcode::RawLine raw;
+  while (split.next(raw) && out.size() < limit) {
+    gcode::Line line = gcode::Line::parse(raw.text);
+    if (line.kind == gcode::CommandKind::None || line.kind == gcode::CommandKind::Host || line.is_m(110)) continue;
+    std::string_view cmd = gcode::serial::command_for_sending(line.code());
+    if (!cmd.empty()) out.push_back({std::string(cmd), raw.number});
+  }
+  return out;
+}
+
+struct ExecutedLog {
+  std::vector<long long> numbers;     // line numbers of the numbered commands, in execution order
+  std::vector<std::string> commands;  // their text
+  std::size_t unnumbered = 0;         // handshake, M105 probes
+};
+
+// Reads the virtual printer's log: time, N, X, Y, Z, E, command (tab-separated).
+inline ExecutedLog parse_executed_log(std::string_view text) {
+  ExecutedLog log;
+  gcode::MemoryLineSplitter split(text);
+  gcode::RawLine raw;
+  while (split.next(raw)) {
+    std::string_view s = raw.text;
+    std::size_t a = s.find('\t');
+    std::size_t b = s.find('\t', a + 1);
+    long long n = std::stoll(std::string(s.substr(a + 1, b - a - 1)));
+    std::size_t c = b;
+    for (int i = 0; i < 4; ++i) c = s.find('\t', c + 1);
+    if (n < 0) {
+      ++log.unnumbered;
+      continue;
+    }
+    log.numbers.push_back(n);
+    log.commands.emplace_back(s.substr(c + 1));
+  }
+  return log;
+}
+
+}  // namespace gctest
