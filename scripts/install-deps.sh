@@ -8,7 +8,6 @@ packages=(
   libcli11-dev libfmt-dev libre2-dev # the library and tools
   catch2 nlohmann-json3-dev          # unit and tool tests (JSON reports read back)
   clang libclang-rt-14-dev           # libFuzzer targets (the runtime is only recommended)
-  libserialport-dev                  # gc-send: serial ports
   librsvg2-bin libxml2-utils         # tests: render and validate SVG
 )
 

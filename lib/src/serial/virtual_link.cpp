@@ -1,6 +1,7 @@
 #include "gcode/serial/virtual_link.hpp"
 
 #include <poll.h>
+#include <sys/prctl.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -12,6 +13,10 @@ namespace gcode::serial {
 VirtualLink::VirtualLink(EventLoop& loop, VirtualPrinter& printer, int fd)
     : loop_(loop), printer_(printer), fd_(fd), wall0_(EventLoop::now()), scale_(printer.config().time_scale) {
   set_nonblocking(fd_);
+  // The model wakes for every line it sends; the kernel's default 50 us
+  // timer slack, multiplied by the time scale, would stretch the simulated
+  // round trips.
+  prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
   watch_ = loop_.add_fd(fd_, POLLIN, [this](short revents) { on_io(revents); });
   loop_.add_timer(
       [this] {
