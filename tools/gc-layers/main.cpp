@@ -248,7 +248,7 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_flag("--time", o.time,
                "Add the estimated print time per layer and cumulative (h:mm:ss), and the total; "
-               "limits from the file's M201/M203/M204/M205, else --profile, else Marlin defaults");
+               "limits from the file's M201/M203/M204/M205, else --profile, else PrusaSlicer's config block, else Marlin's defaults");
   app.add_option("--profile", o.profile,
                  "Machine limits: a key = value file (a PrusaSlicer config.ini works), or the built-in cura or marlin")
       ->type_name("FILE");
@@ -260,6 +260,7 @@ int main(int argc, char** argv) {
       ->type_name("PATH");
   app.add_flag("--no-travel", o.no_travel, "Leave travel moves out of the pictures");
   app.add_option("--svg-size", o.svg_size, "Size of a layer's picture in pixels (default 800)")
+      ->type_name("PX")
       ->check(CLI::Range(50.0, 20000.0));
   app.add_flag("-q,--quiet", o.quiet, "Only errors on standard error");
   app.add_flag("-v,--verbose", o.verbose, "More messages on standard error");
