@@ -319,8 +319,7 @@ void Subdivider::write_pieces(const RawLine& raw, const Line& line, const Plan& 
       out_.write(end_of_line);
       continue;
     }
-    std::memcpy(p, end_of_line.data(), end_of_line.size());  // at most "\r\n"
-    p += end_of_line.size();
+    for (char c : end_of_line) *p++ = c;  // at most "\r\n"; none after a final line without one
     out_.write(std::string_view(buffer, static_cast<std::size_t>(p - buffer)));
   }
 }

@@ -102,7 +102,8 @@ TEST_CASE("relative E pieces sum exactly at the written precision", "[subdivide]
   REQUIRE(l.size() == 2 + 6);
   long units = 0;
   for (std::size_t i = 2; i < l.size(); ++i) {
-    gcode::Line p = gcode::Line::parse(l[i].substr(0, l[i].size() - 1));
+    std::string text = l[i].substr(0, l[i].size() - 1);  // the Line views into it
+    gcode::Line p = gcode::Line::parse(text);
     REQUIRE(p.has('E'));
     CHECK(gcode::decimals_of(p.find('E')->raw) <= 5);
     units += std::lround(p.find('E')->value * 1e5);
