@@ -365,7 +365,7 @@ TEST_CASE("gc-pause-at: --z picks the first layer above the height, never a Z-ho
   }
 }
 
-TEST_CASE("gc-pause-at: --after-layer N equals --before-layer N+1; --every; after the last layer", "[gc-pause-at]") {
+TEST_CASE("gc-pause-at: --after-layer N equals --before-layer N+1, and --every, and after the last layer", "[gc-pause-at]") {
   std::string path = fixture_path("slic3r_cylinder_0.3_rel_zhop_brim.gcode");
   auto a = run(tool() + " --after-layer 7 " + quote(path));
   auto b = run(tool() + " --before-layer 8 " + quote(path));
@@ -384,7 +384,7 @@ TEST_CASE("gc-pause-at: --after-layer N equals --before-layer N+1; --every; afte
   CHECK(rows[0].layer == "end");
 }
 
-TEST_CASE("gc-pause-at: a pipe streams the same as a file; without the bed it fails before writing", "[gc-pause-at]") {
+TEST_CASE("gc-pause-at: a pipe streams the same as a file, and without the bed it fails before writing", "[gc-pause-at]") {
   std::string path = fixture_path("cura_cube_0.2_abs_zhop_skirt.gcode");
   auto f = run(tool() + " --before-layer 7 --bed 220x220 " + quote(path));
   auto s = run("cat " + quote(path) + " | " + tool() + " --before-layer 7 --bed 220x220");
