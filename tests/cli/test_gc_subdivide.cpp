@@ -83,7 +83,7 @@ LinePlace places_of(const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("every fixture, --max 2 and --latency 0.25: the checker holds and a second run changes nothing",
+TEST_CASE("every fixture at max 2 mm and at latency 0.25 s: the checker holds and a second run changes nothing",
           "[gc-subdivide][fixtures]") {
   for (const std::string& name : gctest::fixture_names()) {
     INFO(name);
@@ -97,7 +97,7 @@ TEST_CASE("every fixture, --max 2 and --latency 0.25: the checker holds and a se
   }
 }
 
-TEST_CASE("smaller fixtures at 0.5 mm, first layers at 0.1 mm", "[gc-subdivide][fixtures]") {
+TEST_CASE("smaller fixtures at 0.5 mm and first layers at 0.1 mm", "[gc-subdivide][fixtures]") {
   for (const char* name : {"slic3r_cube_0.2_abs_reprap_skirt.gcode", "cura_cube_0.2_abs_zhop_skirt.gcode"}) {
     INFO(name);
     CHECK(run_checked(read_file(fixture_path(name)), "--max 0.5", max_limits(0.5)).pieces > 10000);
@@ -120,7 +120,7 @@ TEST_CASE("a file with CRLF endings keeps them on every piece", "[gc-subdivide]"
   for (const std::string& l : gctest::split_lines(r.out)) REQUIRE(l.substr(l.size() - 2) == "\r\n");
 }
 
-TEST_CASE("--layers, --z-range and --types split only there", "[gc-subdivide][select]") {
+TEST_CASE("selections by layer and height and feature split only there", "[gc-subdivide][select]") {
   std::string name = "prusa_cube_0.2_mk3s_rel_zhop.gcode";
   std::string text = read_file(fixture_path(name));
   LinePlace place = places_of(text);
@@ -150,7 +150,7 @@ TEST_CASE("--layers, --z-range and --types split only there", "[gc-subdivide][se
   }
 }
 
-TEST_CASE("--no-travel leaves travel whole; --arcs keep leaves arcs", "[gc-subdivide]") {
+TEST_CASE("no-travel keeps travel whole and arcs keep keeps arcs", "[gc-subdivide]") {
   std::string text = head_of("cura_cube_0.2_abs_zhop_skirt.gcode", 3000);
   gctest::SubdivideLimits l = max_limits(0.5);
   l.travel = false;
@@ -166,7 +166,7 @@ TEST_CASE("--no-travel leaves travel whole; --arcs keep leaves arcs", "[gc-subdi
   CHECK(only_arcs.out.find("G2") == std::string::npos);
 }
 
-TEST_CASE("--max-rate and --baud: the line rate wins, said once", "[gc-subdivide]") {
+TEST_CASE("max-rate and baud: the line rate wins and is said once", "[gc-subdivide]") {
   std::string text = head_of("prusa_pegs_0.2_klipper_zhop_labels.gcode", 3000);
   // 115200 baud: 384 lines/s; travel at 180 mm/s then needs 0.47 mm pieces.
   auto r = run(subdivide_cmd("--max 0.2 --baud 115200"), text);
@@ -194,7 +194,7 @@ TEST_CASE("junk passes through unchanged with warnings", "[gc-subdivide][junk]")
   CHECK(quiet.out == r.out);
 }
 
-TEST_CASE("files: -o, -i, a missing file", "[gc-subdivide]") {
+TEST_CASE("files: output file and in-place and a missing file", "[gc-subdivide]") {
   std::string dir = gctest::temp_dir();
   std::string in = dir + "/in.gcode", out = dir + "/out.gcode";
   std::string text = head_of("slic3r_cube_0.2_abs_reprap_skirt.gcode", 800);
@@ -236,7 +236,7 @@ static std::set<std::string> long_options(std::string text) {
   return names;
 }
 
-TEST_CASE("--help and the man page name the same options", "[gc-subdivide][docs]") {
+TEST_CASE("help and the man page name the same options", "[gc-subdivide][docs]") {
   auto help = run(subdivide_cmd("--help"));
   REQUIRE(help.status == 0);
   std::string man = read_file(std::string(GC_FIXTURES_DIR) + "/../../man/gc-subdivide.1");

@@ -123,7 +123,7 @@ TEST_CASE("G91 relative XYZ and the Marlin E coupling", "[subdivide]") {
   CHECK(out.find("G1 Z0.4\n") != std::string::npos);  // pure Z: left alone
 }
 
-TEST_CASE("inches: pieces in inches, finer decimals, limit in mm", "[subdivide]") {
+TEST_CASE("inches: pieces in inches with finer decimals and the limit in mm", "[subdivide]") {
   std::string out = checked("G20\nG90\nM82\nG1 X0 Y0 E0\nG1 X0.3937 Y0.1 E0.01 F600\nG21\nG1 X0 Y0\n", max_of(2));
   gcode::MachineState s = gctest::replay_state(out);
   CHECK_FALSE(s.inches);
@@ -143,7 +143,7 @@ TEST_CASE("G92 in the middle of a file: absolute E restarts from the new origin"
   CHECK(std::find(l.begin(), l.end(), "G1 X100.375 E0.8125\n") != l.end());
 }
 
-TEST_CASE("arcs: I/J and R, clockwise and counter-clockwise, full circles", "[subdivide][arc]") {
+TEST_CASE("arcs: I/J and R forms clockwise and counter-clockwise and full circles", "[subdivide][arc]") {
   SubdivideOptions o = max_of(0.5);
   std::string ij = checked("G90\nM82\nG1 X10 Y0 E0 F1800\nG3 X0 Y10 I-10 J0 E2\nG2 X10 Y0 I0 J-10 E4\n", o);
   std::string r = checked("G90\nM82\nG1 X10 Y0 E0 F1800\nG3 X0 Y10 R10 E2\nG2 X10 Y0 R-10 E4\n", o);
@@ -178,7 +178,7 @@ TEST_CASE("arcs: I/J and R, clockwise and counter-clockwise, full circles", "[su
   }
 }
 
-TEST_CASE("left alone: pure Z, pure E, firmware retraction, short moves, other words", "[subdivide]") {
+TEST_CASE("left alone: pure Z and pure E moves and firmware retraction and short moves and other words", "[subdivide]") {
   std::string in =
       "G1 X0 Y0 F600\nG1 Z5\nG1 E-2\nG10\nG11\nG1 X0.1 Y0.1\nN12 G1 X20*99\nG1 X40 S100\nG1 X60 A3\nG4 P100\n";
   Result r = subdivide(in, max_of(0.2));
@@ -186,7 +186,7 @@ TEST_CASE("left alone: pure Z, pure E, firmware retraction, short moves, other w
   CHECK(r.stats.moves_split == 0);
 }
 
-TEST_CASE("--no-travel leaves travel whole and splits extrusion", "[subdivide]") {
+TEST_CASE("without travel splitting travel stays whole and extrusion is split", "[subdivide]") {
   SubdivideOptions o = max_of(0.5);
   o.split_travel = false;
   std::string out = checked("M83\nG0 X10 Y10 F6000\nG1 X12 Y10 E0.1\n", o);
@@ -204,7 +204,7 @@ TEST_CASE("line endings: CRLF kept on every piece; a missing final newline stays
   CHECK(lines_of(checked("G1 X0 Y0\nG1 X1 Y0", max_of(0.4))).back() == "G1 X1 Y0");
 }
 
-TEST_CASE("junk passes through unchanged with a warning, never a crash", "[subdivide]") {
+TEST_CASE("junk passes through unchanged with a warning and never a crash", "[subdivide]") {
   std::string huge = "G1 X" + std::string(100000, '9') + "\n";
   std::string in = "G1 X0 Y0 E0 F600\nG1 X1e309 Y5\nG1 XNaN Y2\nG1 X1e300 Y1\nG1 X0 Y0\nG1 X5 ~#\x01\n" + huge +
                    std::string(2000, 'G') + "\nG1 X2 Y2\n";
@@ -216,7 +216,7 @@ TEST_CASE("junk passes through unchanged with a warning, never a crash", "[subdi
     if (line != "G1 X2 Y2\n") CHECK(r.out.find(line) != std::string::npos);
 }
 
-TEST_CASE("the piece limit: --max, --latency with --buffer, --max-rate, the --min floor", "[subdivide]") {
+TEST_CASE("the piece limit from max or latency and buffer and rate and the min floor", "[subdivide]") {
   SubdivideOptions o;
   o.max_length = 0.2;
   CHECK(o.piece_limit(1800) == 0.2);
@@ -233,7 +233,7 @@ TEST_CASE("the piece limit: --max, --latency with --buffer, --max-rate, the --mi
   CHECK(rate_won);
 }
 
-TEST_CASE("--max-rate wins over --max, said once", "[subdivide]") {
+TEST_CASE("the line rate wins over the length limit and is said once", "[subdivide]") {
   SubdivideOptions o = max_of(0.2);
   o.max_rate = 100;  // 100 mm/s at 100 lines/s: 1 mm pieces
   StringSink sink;
