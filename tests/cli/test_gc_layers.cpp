@@ -115,7 +115,7 @@ TEST_CASE("filament in the layers equals the slicer's own figure within 0.1 %", 
   }
 }
 
-TEST_CASE("--extract 1- reproduces every fixture byte for byte", "[gc-layers][property]") {
+TEST_CASE("extracting all layers (--extract 1-) reproduces every fixture byte for byte", "[gc-layers][property]") {
   for (const auto& name : gctest::fixture_names()) {
     INFO(name);
     auto r = run(layers_cmd("--extract 1- " + quote(fixture_path(name))));
