@@ -166,7 +166,14 @@ double VirtualPrinter::heat_done_time() const {
 double VirtualPrinter::next_event() const {
   double t = kNever;
   if (wire_head_ < wire_.size()) t = wire_next_;
-  if (disconnected_) return t;
+  std::size_t pending = tx_.size() - tx_head_;
+  if (pending > 0) {
+    // Wake when the next whole line has been sent, not for every byte.
+    std::size_t nl = tx_.find('\n', tx_head_);
+    std::size_t upto = nl == std::string::npos ? tx_.size() : nl + 1;
+    t = std::min(t, tx_free_at_ - static_cast<double>(tx_.size() - upto) * byte_time_);
+  }
+  if (disconnected_ || halted_ || silent_) return t;  // the firmware does nothing more
   if (!planner_.empty()) t = std::min(t, head_end_);
   switch (wait_) {
     case Wait::Dwell:
@@ -177,13 +184,6 @@ double VirtualPrinter::next_event() const {
   }
   if (wait_ != Wait::None && wait_ != Wait::Heating) t = std::min(t, next_busy_);
   t = std::min(t, next_report_);
-  std::size_t pending = tx_.size() - tx_head_;
-  if (pending > 0) {
-    // Wake when the next whole line has been sent, not for every byte.
-    std::size_t nl = tx_.find('\n', tx_head_);
-    std::size_t upto = nl == std::string::npos ? tx_.size() : nl + 1;
-    t = std::min(t, tx_free_at_ - static_cast<double>(tx_.size() - upto) * byte_time_);
-  }
   return t;
 }
 
