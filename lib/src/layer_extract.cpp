@@ -58,7 +58,7 @@ void LayerExtractor::write_bridge(const MachineState& target, bool travel) {
 void LayerExtractor::on_line(const TrackedLine& t) {
   if (!t.raw.ending.empty()) ending_ = t.raw.ending;
   for (const Word& w : t.line)
-    if (w.has_value) precision_.observe_word(w.letter, w.raw);
+    if (w.has_value) precision_.observe(w.letter, w.decimals);
   if (!keep_) return;
   out_.write(t.raw.text);
   out_.write(t.raw.ending);

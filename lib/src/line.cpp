@@ -42,7 +42,7 @@ constexpr double kPow10[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1
 // digits) goes to parse_number, so values are the same bit for bit.
 // Returns false when the text is no finite number. The fast path needs no
 // finiteness test, which keeps the division off the critical path.
-bool scan_number(const char* p, const char* end, std::string_view& raw, double& value) {
+bool scan_number(const char* p, const char* end, std::string_view& raw, double& value, int& decimals) {
   const char* q = p;
   bool negative = false;
   if (q != end && (*q == '-' || *q == '+')) {
@@ -63,6 +63,7 @@ bool scan_number(const char* p, const char* end, std::string_view& raw, double& 
       mantissa = mantissa * 10 + d;
     fraction_digits = static_cast<int>(q - frac_start);
     digits += fraction_digits;
+    decimals = fraction_digits;
     // A second point ("1.2.3"): the text runs on like number_length says.
     while (q != end && (*q == '.' || (*q >= '0' && *q <= '9'))) {
       points += *q == '.';
@@ -255,7 +256,9 @@ Line Line::parse(std::string_view text) {
     while (value_start != code_end && (*value_start == ' ' || *value_start == '\t')) ++value_start;
     if (value_start != code_end && starts_number(*value_start)) {
       double v = 0;
-      bool ok = scan_number(value_start, code_end, w.raw, v);
+      int decimals = 0;
+      bool ok = scan_number(value_start, code_end, w.raw, v, decimals);
+      w.decimals = static_cast<std::uint8_t>(decimals > 255 ? 255 : decimals);
       p = value_start + w.raw.size();
       if (ok) {
         w.has_value = true;

@@ -121,7 +121,7 @@ void Subdivider::process(const RawLine& raw, const Line& line, const Move& move,
       warn(raw.number, "cannot read this line; passed through unchanged");
   } else if (move.kind == MoveKind::Linear || move.kind == MoveKind::Arc) {
     for (const Word& w : line)
-      if (axis_of(w.letter) >= 0 || w.letter == 'I' || w.letter == 'J') precision_.observe_word(w.letter, w.raw);
+      if (axis_of(w.letter) >= 0 || w.letter == 'I' || w.letter == 'J') precision_.observe(w.letter, w.decimals);
     Plan plan;
     if (selected && plan_move(raw, line, move, after, plan)) {
       write_pieces(raw, line, plan);

@@ -87,3 +87,11 @@ TEST_CASE("malformed lines are flagged, never thrown", "[line]") {
   std::string huge(10 << 20, 'A');
   CHECK_NOTHROW(Line::parse(huge));
 }
+
+TEST_CASE("words know how many decimals they were written with", "[line]") {
+  Line l = Line::parse("G1 X10 Y-.80 Z1.125 E1e-3 F7800.000");
+  CHECK(l.find('X')->decimals == 0);
+  CHECK(l.find('Y')->decimals == 2);
+  CHECK(l.find('Z')->decimals == 3);
+  CHECK(l.find('F')->decimals == 3);
+}

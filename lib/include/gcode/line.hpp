@@ -15,6 +15,7 @@ namespace gcode {
 struct Word {
   char letter = 0;          // always upper case
   bool has_value = false;   // false for "G28 X" style flags
+  std::uint8_t decimals = 0;  // digits after the point as written ("-.80" -> 2)
   double value = 0;         // in the units written (no inch conversion)
   std::string_view raw;     // the value as written, e.g. "-.8"
 };

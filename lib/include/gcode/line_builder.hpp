@@ -55,10 +55,11 @@ class LineBuilder {
 class Precision {
  public:
   Precision();
-  void observe_word(char letter, std::string_view raw) {
-    int d = decimals_of(raw);
+  void observe_word(char letter, std::string_view raw) { observe(letter, decimals_of(raw)); }
+  // For parsed words, which know their decimals already (no second scan).
+  void observe(char letter, int decimals) {
     int& slot = decimals_[index(letter)];
-    if (d > slot) slot = d > 9 ? 9 : d;
+    if (decimals > slot) slot = decimals > 9 ? 9 : decimals;
   }
   int of(char letter) const { return decimals_[index(letter)]; }
 
