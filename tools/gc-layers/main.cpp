@@ -72,16 +72,12 @@ class Collector : public gcode::LayerSink {
   gcode::LayerExtractor* extractor_;
 };
 
-// One pass over the input; returns the layer count.
+// One pass over the input, then back to its start; returns the layer count.
 int count_layers(gcode::InputFile& input, const gcode::LayerMarkers& markers) {
-  struct Counter : gcode::LayerSink {
-    void on_line(const gcode::TrackedLine&) override {}
-  } counter;
-  gcode::LayerTracker tracker(counter, markers);
   gcode::LineReader reader(input.fd());
-  gcode::track_all(reader, tracker);
+  int layers = gcode::count_layers(reader, markers);
   input.rewind();
-  return tracker.layer_count();
+  return layers;
 }
 
 // --svg / --svg-sheet: the pictures, to the path(s) of --svg-out (or stdout).
