@@ -17,10 +17,9 @@ using Json = nlohmann::json;
 
 namespace {
 
-std::string layers_cmd(const std::string& args) { return quote(gctest::tool_path("gc-layers")) + " " + args; }
 
 Json layers_json(const std::string& path) {
-  auto r = run(layers_cmd("--json " + quote(path)));
+  auto r = run(gctest::tool_command("gc-layers", "--json " + quote(path)));
   REQUIRE(r.status == 0);
   return Json::parse(r.out);
 }
@@ -118,7 +117,7 @@ TEST_CASE("filament in the layers equals the slicer's own figure within 0.1 %", 
 TEST_CASE("extracting all layers (--extract 1-) reproduces every fixture byte for byte", "[gc-layers][property]") {
   for (const auto& name : gctest::fixture_names()) {
     INFO(name);
-    auto r = run(layers_cmd("--extract 1- " + quote(fixture_path(name))));
+    auto r = run(gctest::tool_command("gc-layers", "--extract 1- " + quote(fixture_path(name))));
     REQUIRE(r.status == 0);
     CHECK(r.out == read_file(fixture_path(name)));
   }
@@ -132,7 +131,7 @@ TEST_CASE("an extract of a middle range replays exactly the moves of those layer
     Json j = layers_json(path);
     int n = static_cast<int>(j["layers"].size());
     int first = n / 3, last = n / 2;
-    auto r = run(layers_cmd("--extract " + std::to_string(first) + "-" + std::to_string(last) + " " + quote(path)));
+    auto r = run(gctest::tool_command("gc-layers", "--extract " + std::to_string(first) + "-" + std::to_string(last) + " " + quote(path)));
     REQUIRE(r.status == 0);
     // The chosen layers' bytes stand in the output unchanged, and replayed in
     // the output's context their moves equal the input's (position, filament,
@@ -173,18 +172,18 @@ TEST_CASE("an extract of a middle range replays exactly the moves of those layer
 TEST_CASE("ranges: last N from a pipe, lists, --z-range, --where", "[gc-layers]") {
   std::string path = fixture_path("prusa_cube_0.2_mk3s_rel_zhop.gcode");
   std::string text = read_file(path);
-  auto last3 = run(layers_cmd("--extract -3 -"), text);
+  auto last3 = run(gctest::tool_command("gc-layers", "--extract -3 -"), text);
   REQUIRE(last3.status == 0);
-  auto explicit3 = run(layers_cmd("--extract 98-100 " + quote(path)));
+  auto explicit3 = run(gctest::tool_command("gc-layers", "--extract 98-100 " + quote(path)));
   CHECK(last3.out == explicit3.out);
-  auto byz = run(layers_cmd("--z-range 19.55:20 " + quote(path)));
+  auto byz = run(gctest::tool_command("gc-layers", "--z-range 19.55:20 " + quote(path)));
   CHECK(byz.out == explicit3.out);
-  auto list = run(layers_cmd("--extract 1,3,5-6 " + quote(path)));
+  auto list = run(gctest::tool_command("gc-layers", "--extract 1,3,5-6 " + quote(path)));
   CHECK(list.status == 0);
   CHECK(list.out.find("; gc-layers: layer 2 left out") != std::string::npos);
   CHECK(list.out.find("; gc-layers: layers 7-100 left out") != std::string::npos);
   Json j = layers_json(path);
-  auto where = run(layers_cmd("--where 50 " + quote(path)));
+  auto where = run(gctest::tool_command("gc-layers", "--where 50 " + quote(path)));
   REQUIRE(where.status == 0);
   CHECK(where.out == std::to_string(j["layers"][49]["first_line"].get<int>()) + " " +
                          std::to_string(j["layers"][49]["last_line"].get<int>()) + " " +
@@ -201,34 +200,34 @@ TEST_CASE("CRLF and a missing final newline change nothing but the bytes", "[gc-
   }
   crlf.pop_back();
   crlf.pop_back();  // no final newline
-  auto all = run(layers_cmd("--extract 1- -"), crlf);
+  auto all = run(gctest::tool_command("gc-layers", "--extract 1- -"), crlf);
   CHECK(all.out == crlf);
-  auto table = run(layers_cmd("--json -"), crlf);
+  auto table = run(gctest::tool_command("gc-layers", "--json -"), crlf);
   CHECK(Json::parse(table.out)["layers"].size() == 101);
-  auto some = run(layers_cmd("--extract 5-6 -"), crlf);
+  auto some = run(gctest::tool_command("gc-layers", "--extract 5-6 -"), crlf);
   for (const auto& l : gctest::split_lines(some.out)) CHECK((l.size() < 2 || l.substr(l.size() - 2) == "\r\n" || l.back() != '\n'));
 }
 
 TEST_CASE("errors: missing layer, empty input, no extrusion, bad options", "[gc-layers][errors]") {
   std::string path = fixture_path("cura_cube_0.2_abs_zhop_skirt.gcode");
-  auto missing = run(layers_cmd("--extract 80-120 " + quote(path)));
+  auto missing = run(gctest::tool_command("gc-layers", "--extract 80-120 " + quote(path)));
   CHECK(missing.status == 1);
   CHECK(missing.err.find("layer 80") == std::string::npos);
   CHECK(missing.err.find("layer 120 does not exist") != std::string::npos);
-  auto where = run(layers_cmd("--where 101 " + quote(path)));
+  auto where = run(gctest::tool_command("gc-layers", "--where 101 " + quote(path)));
   CHECK(where.status == 1);
   CHECK(where.err.find("has 100 layers") != std::string::npos);
-  auto empty = run(layers_cmd("-"), "");
+  auto empty = run(gctest::tool_command("gc-layers", "-"), "");
   CHECK(empty.status == 1);
   CHECK(empty.err.find("empty input") != std::string::npos);
-  auto none = run(layers_cmd("-"), "G28\nG1 Z10\n");
+  auto none = run(gctest::tool_command("gc-layers", "-"), "G28\nG1 Z10\n");
   CHECK(none.status == 1);
   CHECK(none.err.find("no extrusion") != std::string::npos);
-  CHECK(run(layers_cmd("--extract 5-2 " + quote(path))).status == 2);
-  CHECK(run(layers_cmd("--extract abc " + quote(path))).status == 2);
-  CHECK(run(layers_cmd("--bogus " + quote(path))).status == 2);
-  CHECK(run(layers_cmd("/nonexistent/file.gcode")).status == 1);
-  CHECK(run(layers_cmd("--layer-marker '(' " + quote(path))).status == 1);
+  CHECK(run(gctest::tool_command("gc-layers", "--extract 5-2 " + quote(path))).status == 2);
+  CHECK(run(gctest::tool_command("gc-layers", "--extract abc " + quote(path))).status == 2);
+  CHECK(run(gctest::tool_command("gc-layers", "--bogus " + quote(path))).status == 2);
+  CHECK(run(gctest::tool_command("gc-layers", "/nonexistent/file.gcode")).status == 1);
+  CHECK(run(gctest::tool_command("gc-layers", "--layer-marker '(' " + quote(path))).status == 1);
 }
 
 TEST_CASE("-i rewrites the file atomically and only on success", "[gc-layers]") {
@@ -236,16 +235,16 @@ TEST_CASE("-i rewrites the file atomically and only on success", "[gc-layers]") 
   std::string copy = dir + "/cube.gcode";
   std::string original = read_file(fixture_path("cura_cube_0.2_abs_zhop_skirt.gcode"));
   gctest::write_file(copy, original);
-  CHECK(run(layers_cmd("-i --extract 200 " + quote(copy))).status == 1);
+  CHECK(run(gctest::tool_command("gc-layers", "-i --extract 200 " + quote(copy))).status == 1);
   CHECK(read_file(copy) == original);
-  REQUIRE(run(layers_cmd("-i --extract 1-10 " + quote(copy))).status == 0);
+  REQUIRE(run(gctest::tool_command("gc-layers", "-i --extract 1-10 " + quote(copy))).status == 0);
   std::string cut = read_file(copy);
   CHECK(cut.size() < original.size());
-  CHECK(run(layers_cmd("--json " + quote(copy))).out.find("\"layer\": 10,") != std::string::npos);
+  CHECK(run(gctest::tool_command("gc-layers", "--json " + quote(copy))).out.find("\"layer\": 10,") != std::string::npos);
 }
 
 TEST_CASE("a closed pipe ends gc-layers quietly", "[gc-layers]") {
-  auto r = run(layers_cmd("--extract 1- " + quote(fixture_path("cura_vase_0.2_spiralize.gcode")) + " | head -c 100"));
+  auto r = run(gctest::tool_command("gc-layers", "--extract 1- " + quote(fixture_path("cura_vase_0.2_spiralize.gcode")) + " | head -c 100"));
   CHECK(r.out.size() == 100);
   CHECK(r.err.empty());
 }

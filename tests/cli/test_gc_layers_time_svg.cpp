@@ -18,7 +18,6 @@ using Json = nlohmann::json;
 
 namespace {
 
-std::string layers_cmd(const std::string& args) { return quote(gctest::tool_path("gc-layers")) + " " + args; }
 
 // Width and height from a PNG's IHDR chunk (big-endian at bytes 16..23).
 std::pair<int, int> png_size(const std::string& png) {
@@ -63,7 +62,7 @@ TEST_CASE("gc-layers --time is within 5 % of PrusaSlicer and 10 % of Cura", "[gc
     if (!slicer.found) continue;
     // Slicers leave heating out. Cura's ;TIME: assumes CuraEngine's machine
     // defaults (the "cura" profile); PrusaSlicer's limits are in the file.
-    auto r = run(layers_cmd("--time --json --no-heat-time " + std::string(slicer.cura ? "--profile cura " : "") +
+    auto r = run(gctest::tool_command("gc-layers", "--time --json --no-heat-time " + std::string(slicer.cura ? "--profile cura " : "") +
                             quote(path)));
     REQUIRE(r.status == 0);
     Json j = Json::parse(r.out);
@@ -88,23 +87,23 @@ TEST_CASE("gc-layers --time is within 5 % of PrusaSlicer and 10 % of Cura", "[gc
 
 TEST_CASE("gc-layers --time text table has time columns and a total", "[gc-layers][time]") {
   std::string path = fixture_path("prusa_cube_0.2_mk3s_rel_zhop.gcode");
-  auto r = run(layers_cmd("--time " + quote(path)));
+  auto r = run(gctest::tool_command("gc-layers", "--time " + quote(path)));
   REQUIRE(r.status == 0);
   CHECK(r.out.find("    time    cumul. features") != std::string::npos);
   CHECK(std::regex_search(r.out, std::regex("\n     1 .* 0:0[0-9]:[0-5][0-9]   0:0[0-9]:[0-5][0-9] Skirt")));
   std::smatch m;
   REQUIRE(std::regex_search(r.out, m, std::regex("print time: ([0-9]+):([0-9]{2}):([0-9]{2})")));
   // With heating counted (M190 S60, M109 S215 from 25 degrees) the total is longer than without.
-  auto cold = run(layers_cmd("--time --no-heat-time " + quote(path)));
+  auto cold = run(gctest::tool_command("gc-layers", "--time --no-heat-time " + quote(path)));
   std::smatch m2;
   REQUIRE(std::regex_search(cold.out, m2, std::regex("print time: ([0-9]+):([0-9]{2}):([0-9]{2})")));
   auto secs = [](const std::smatch& s) { return std::stoi(s[1]) * 3600 + std::stoi(s[2]) * 60 + std::stoi(s[3]); };
   CHECK(secs(m) > secs(m2) + 60);
   // Without --time the table is unchanged.
-  auto plain = run(layers_cmd(quote(path)));
+  auto plain = run(gctest::tool_command("gc-layers", quote(path)));
   CHECK(plain.out.find("cumul.") == std::string::npos);
   // -v tells which limits were used: the file's own M201/M203.
-  auto verbose = run(layers_cmd("--time -v " + quote(path)));
+  auto verbose = run(gctest::tool_command("gc-layers", "--time -v " + quote(path)));
   CHECK(verbose.err.find("max feed rate X200 Y200 Z12 E120") != std::string::npos);
 }
 
@@ -118,7 +117,7 @@ TEST_CASE("gc-layers --svg draws a layer that renders, for Prusa and Cura files"
                {"cura_cube_0.2_abs_zhop_skirt.gcode", 12, "WALL-OUTER"}};
   for (const Case& c : cases) {
     std::string out = dir + "/layer.svg";
-    auto r = run(layers_cmd("--svg " + std::to_string(c.layer) + " --svg-out " + quote(out) + " " +
+    auto r = run(gctest::tool_command("gc-layers", "--svg " + std::to_string(c.layer) + " --svg-out " + quote(out) + " " +
                             quote(fixture_path(c.file))));
     INFO(c.file << ": " << r.err);
     REQUIRE(r.status == 0);
@@ -131,12 +130,12 @@ TEST_CASE("gc-layers --svg draws a layer that renders, for Prusa and Cura files"
     CHECK(svg.find("#d2d2d2") != std::string::npos);          // the layer below
     CHECK(svg.size() < 200000);                               // merged polylines keep it small
     // Without travel: no dashed lines.
-    auto nt = run(layers_cmd("--svg " + std::to_string(c.layer) + " --no-travel " + quote(fixture_path(c.file))));
+    auto nt = run(gctest::tool_command("gc-layers", "--svg " + std::to_string(c.layer) + " --no-travel " + quote(fixture_path(c.file))));
     REQUIRE(nt.status == 0);
     CHECK(nt.out.find("stroke-dasharray=\"") == std::string::npos);
   }
   // PrusaSlicer's bed_shape gives the bed outline.
-  auto bed = run(layers_cmd("--svg 3 " + quote(fixture_path("prusa_cube_0.2_mk3s_rel_zhop.gcode"))));
+  auto bed = run(gctest::tool_command("gc-layers", "--svg 3 " + quote(fixture_path("prusa_cube_0.2_mk3s_rel_zhop.gcode"))));
   REQUIRE(bed.status == 0);
   CHECK(bed.out.find("<polygon fill=\"#f6f6f2\"") != std::string::npos);
 }
@@ -144,10 +143,10 @@ TEST_CASE("gc-layers --svg draws a layer that renders, for Prusa and Cura files"
 TEST_CASE("gc-layers --svg with a pattern writes one file per layer; --svg-sheet one grid", "[gc-layers][svg]") {
   std::string dir = gctest::temp_dir();
   std::string path = fixture_path("cura_pegs_0.2_rel_fwretract.gcode");
-  auto r = run(layers_cmd("--svg 2-4 --svg-out " + quote(dir + "/l-{}.svg") + " " + quote(path)));
+  auto r = run(gctest::tool_command("gc-layers", "--svg 2-4 --svg-out " + quote(dir + "/l-{}.svg") + " " + quote(path)));
   REQUIRE(r.status == 0);
   for (int l = 2; l <= 4; ++l) CHECK(read_file(dir + "/l-" + std::to_string(l) + ".svg").find("Layer " + std::to_string(l)) != std::string::npos);
-  auto s = run(layers_cmd("--svg-sheet 1,10,50,100 --svg-out " + quote(dir + "/sheet.svg") + " " + quote(path)));
+  auto s = run(gctest::tool_command("gc-layers", "--svg-sheet 1,10,50,100 --svg-out " + quote(dir + "/sheet.svg") + " " + quote(path)));
   REQUIRE(s.status == 0);
   check_picture(dir + "/sheet.svg");
   std::string sheet = read_file(dir + "/sheet.svg");
@@ -156,16 +155,16 @@ TEST_CASE("gc-layers --svg with a pattern writes one file per layer; --svg-sheet
 
 TEST_CASE("gc-layers --svg errors", "[gc-layers][svg]") {
   std::string path = quote(fixture_path("prusa_cube_0.2_mk3s_rel_zhop.gcode"));
-  auto missing = run(layers_cmd("--svg 500 " + path));
+  auto missing = run(gctest::tool_command("gc-layers", "--svg 500 " + path));
   CHECK(missing.status == 1);
   CHECK(missing.err.find("layer 500 does not exist") != std::string::npos);
-  auto several = run(layers_cmd("--svg 1-3 " + path));
+  auto several = run(gctest::tool_command("gc-layers", "--svg 1-3 " + path));
   CHECK(several.status == 1);
   CHECK(several.err.find("pattern") != std::string::npos);
-  CHECK(run(layers_cmd("--svg 1 --extract 2 " + path)).status == 2);
-  CHECK(run(layers_cmd("--svg x " + path)).status == 2);
-  CHECK(run(layers_cmd("--svg-out a.svg " + path)).status == 2);
-  auto profile = run(layers_cmd("--time --profile /nonexistent.ini " + path));
+  CHECK(run(gctest::tool_command("gc-layers", "--svg 1 --extract 2 " + path)).status == 2);
+  CHECK(run(gctest::tool_command("gc-layers", "--svg x " + path)).status == 2);
+  CHECK(run(gctest::tool_command("gc-layers", "--svg-out a.svg " + path)).status == 2);
+  auto profile = run(gctest::tool_command("gc-layers", "--time --profile /nonexistent.ini " + path));
   CHECK(profile.status == 1);
   CHECK(profile.err.find("gc-layers: /nonexistent.ini") == 0);
 }

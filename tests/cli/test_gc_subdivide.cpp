@@ -20,18 +20,17 @@ using gctest::run;
 
 namespace {
 
-std::string subdivide_cmd(const std::string& args) { return quote(gctest::tool_path("gc-subdivide")) + " " + args; }
 
 // Runs the tool on `input` (stdin), checks the invariants and that a second
 // run changes nothing. Returns the checker's report.
 gctest::SubdivideCheck run_checked(const std::string& input, const std::string& args,
                                    const gctest::SubdivideLimits& limits) {
-  auto r = run(subdivide_cmd(args), input);
+  auto r = run(gctest::tool_command("gc-subdivide", args), input);
   REQUIRE(r.status == 0);
   CHECK(r.err == "");
   gctest::SubdivideCheck c = gctest::check_subdivision(input, r.out, limits);
   CHECK(c.first_failure() == "");
-  auto again = run(subdivide_cmd(args), r.out);
+  auto again = run(gctest::tool_command("gc-subdivide", args), r.out);
   REQUIRE(again.status == 0);
   CHECK((again.out == r.out));  // idempotent
   return c;
@@ -114,7 +113,7 @@ TEST_CASE("a file with CRLF endings keeps them on every piece", "[gc-subdivide]"
   std::string crlf;
   for (char c : text) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
   text = crlf;
-  auto r = run(subdivide_cmd("--max 0.5"), text);
+  auto r = run(gctest::tool_command("gc-subdivide", "--max 0.5"), text);
   REQUIRE(r.status == 0);
   CHECK(gctest::check_subdivision(text, r.out, max_limits(0.5)).first_failure() == "");
   for (const std::string& l : gctest::split_lines(r.out)) REQUIRE(l.substr(l.size() - 2) == "\r\n");
@@ -156,11 +155,11 @@ TEST_CASE("no-travel keeps travel whole and arcs keep keeps arcs", "[gc-subdivid
   l.travel = false;
   run_checked(text, "--max 0.5 --no-travel", l);
   std::string arcs = "G90\nM83\nG1 X10 Y0 F1800\nG2 I-10 J0 E3\nG3 X0 Y10 R10 E1\n";
-  auto keep = run(subdivide_cmd("--max 0.5 --arcs keep"), arcs);
+  auto keep = run(gctest::tool_command("gc-subdivide", "--max 0.5 --arcs keep"), arcs);
   CHECK(keep.out.find("G2 I-10 J0 E3\nG3 X0 Y10 R10 E1\n") != std::string::npos);
   gctest::SubdivideLimits a = max_limits(0.5);
   CHECK(run_checked(arcs, "--max 0.5", a).arcs == 2);
-  auto only_arcs = run(subdivide_cmd("--arcs split"), arcs);
+  auto only_arcs = run(gctest::tool_command("gc-subdivide", "--arcs split"), arcs);
   REQUIRE(only_arcs.status == 0);
   CHECK(only_arcs.out.rfind("G90\nM83\nG1 X10 Y0 F1800\nG1 X", 0) == 0);
   CHECK(only_arcs.out.find("G2") == std::string::npos);
@@ -169,27 +168,27 @@ TEST_CASE("no-travel keeps travel whole and arcs keep keeps arcs", "[gc-subdivid
 TEST_CASE("max-rate and baud: the line rate wins and is said once", "[gc-subdivide]") {
   std::string text = head_of("prusa_pegs_0.2_klipper_zhop_labels.gcode", 3000);
   // 115200 baud: 384 lines/s; travel at 180 mm/s then needs 0.47 mm pieces.
-  auto r = run(subdivide_cmd("--max 0.2 --baud 115200"), text);
+  auto r = run(gctest::tool_command("gc-subdivide", "--max 0.2 --baud 115200"), text);
   REQUIRE(r.status == 0);
   CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
   CHECK(r.err.find("--max-rate") != std::string::npos);
   gctest::SubdivideLimits l = max_limits(0.2);
   l.rate = 115200.0 / 10 / 30;
   CHECK(gctest::check_subdivision(text, r.out, l).first_failure() == "");
-  auto same = run(subdivide_cmd("--max 0.2 --max-rate 384"), text);
+  auto same = run(gctest::tool_command("gc-subdivide", "--max 0.2 --max-rate 384"), text);
   CHECK(same.out == r.out);
 }
 
 TEST_CASE("junk passes through unchanged with warnings", "[gc-subdivide][junk]") {
   std::string junk = "G1 X0 Y0 F600\nG1 X1e309 Y5\nG1 XNaN\nG1 X1e300\nG1 X0 Y0\n\x01\x02\xff\n" +
                      std::string(300000, 'G') + "\nG1 X" + std::string(5000, '7') + "\nG1 X3 Y4 ; fine\n";
-  auto r = run(subdivide_cmd("--max 0.5"), junk);
+  auto r = run(gctest::tool_command("gc-subdivide", "--max 0.5"), junk);
   CHECK(r.status == 0);
   CHECK(r.err.find("warning") != std::string::npos);
   std::vector<std::string> in = gctest::split_lines(junk), out = gctest::split_lines(r.out);
   REQUIRE(out.size() == in.size() - 1 + 11);  // 5 mm: 11 pieces of 0.455 mm
   CHECK(std::equal(in.begin(), in.end() - 1, out.begin()));
-  auto quiet = run(subdivide_cmd("-q --max 0.5"), junk);
+  auto quiet = run(gctest::tool_command("gc-subdivide", "-q --max 0.5"), junk);
   CHECK(quiet.err == "");
   CHECK(quiet.out == r.out);
 }
@@ -199,13 +198,13 @@ TEST_CASE("files: output file and in-place and a missing file", "[gc-subdivide]"
   std::string in = dir + "/in.gcode", out = dir + "/out.gcode";
   std::string text = head_of("slic3r_cube_0.2_abs_reprap_skirt.gcode", 800);
   gctest::write_file(in, text);
-  auto piped = run(subdivide_cmd("--max 1 " + quote(in)));
+  auto piped = run(gctest::tool_command("gc-subdivide", "--max 1 " + quote(in)));
   REQUIRE(piped.status == 0);
-  CHECK(run(subdivide_cmd("--max 1 -o " + quote(out) + " " + quote(in))).status == 0);
+  CHECK(run(gctest::tool_command("gc-subdivide", "--max 1 -o " + quote(out) + " " + quote(in))).status == 0);
   CHECK(read_file(out) == piped.out);
-  CHECK(run(subdivide_cmd("--max 1 -i " + quote(in))).status == 0);
+  CHECK(run(gctest::tool_command("gc-subdivide", "--max 1 -i " + quote(in))).status == 0);
   CHECK(read_file(in) == piped.out);
-  auto missing = run(subdivide_cmd("--max 1 " + quote(dir + "/none.gcode")));
+  auto missing = run(gctest::tool_command("gc-subdivide", "--max 1 " + quote(dir + "/none.gcode")));
   CHECK(missing.status == 1);
   CHECK(missing.err.rfind("gc-subdivide: ", 0) == 0);
 }
@@ -215,12 +214,12 @@ TEST_CASE("usage errors exit 2 with a message", "[gc-subdivide][usage]") {
                            "--max 0.2 --arcs maybe", "--latency 1 --buffer 0", "--max 0.2 --z-range a:b",
                            "--max 0.2 -i", "--no-such-option"}) {
     INFO(args);
-    auto r = run(subdivide_cmd(args), "G1 X1\n");
+    auto r = run(gctest::tool_command("gc-subdivide", args), "G1 X1\n");
     CHECK(r.status == 2);
     CHECK(r.err.find("gc-subdivide") != std::string::npos);
     CHECK(r.out == "");
   }
-  CHECK(run(subdivide_cmd("--version")).out.rfind("gc-subdivide ", 0) == 0);
+  CHECK(run(gctest::tool_command("gc-subdivide", "--version")).out.rfind("gc-subdivide ", 0) == 0);
 }
 
 // Every "--name" in a text (roff writes a dash as "\-").
@@ -237,7 +236,7 @@ static std::set<std::string> long_options(std::string text) {
 }
 
 TEST_CASE("help and the man page name the same options", "[gc-subdivide][docs]") {
-  auto help = run(subdivide_cmd("--help"));
+  auto help = run(gctest::tool_command("gc-subdivide", "--help"));
   REQUIRE(help.status == 0);
   std::string man = read_file(std::string(GC_FIXTURES_DIR) + "/../../man/gc-subdivide.1");
   std::set<std::string> in_help = long_options(help.out), in_man = long_options(man);

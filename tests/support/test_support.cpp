@@ -64,6 +64,10 @@ std::string quote(std::string_view arg) {
   return q + "'";
 }
 
+std::string tool_command(std::string_view tool, const std::string& args) {
+  return quote(tool_path(tool)) + " " + args;
+}
+
 RunResult run(const std::string& command_line, std::string_view input) {
   std::string dir = temp_dir();
   std::string in_path = dir + "/stdin", out_path = dir + "/stdout", err_path = dir + "/stderr";

@@ -27,6 +27,8 @@ struct RunResult {
 // Runs a shell command line (arguments already quoted), feeding `input` on stdin.
 RunResult run(const std::string& command_line, std::string_view input = {});
 std::string quote(std::string_view arg);
+// The shell command line that runs a built tool with `args` (already quoted).
+std::string tool_command(std::string_view tool, const std::string& args);
 
 // Splits text into lines the way the library does (endings kept).
 std::vector<std::string> split_lines(std::string_view text);
