@@ -22,12 +22,12 @@
 #include <cstring>
 #include <string_view>
 
-#include "gcode/layer_marker.hpp"
-#include "gcode/layer_tracker.hpp"
-#include "gcode/line.hpp"
-#include "gcode/line_reader.hpp"
-#include "gcode/machine_state.hpp"
-#include "gcode/output_buffer.hpp"
+#include "gcode/core/layer_marker.hpp"
+#include "gcode/core/layer_tracker.hpp"
+#include "gcode/core/line.hpp"
+#include "gcode/core/line_reader.hpp"
+#include "gcode/core/machine_state.hpp"
+#include "gcode/core/output_buffer.hpp"
 
 namespace {
 

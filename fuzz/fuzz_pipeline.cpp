@@ -18,12 +18,12 @@
 #include <string>
 #include <string_view>
 
-#include "gcode/layer_marker.hpp"
-#include "gcode/layer_tracker.hpp"
-#include "gcode/line.hpp"
-#include "gcode/line_reader.hpp"
-#include "gcode/number.hpp"
-#include "gcode/output_buffer.hpp"
+#include "gcode/core/layer_marker.hpp"
+#include "gcode/core/layer_tracker.hpp"
+#include "gcode/core/line.hpp"
+#include "gcode/core/line_reader.hpp"
+#include "gcode/core/number.hpp"
+#include "gcode/core/output_buffer.hpp"
 
 namespace {
 

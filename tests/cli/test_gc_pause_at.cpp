@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "gcode/line.hpp"
-#include "gcode/machine_state.hpp"
+#include "gcode/core/line.hpp"
+#include "gcode/core/machine_state.hpp"
 #include "test_support.hpp"
 
 using gctest::fixture_names;

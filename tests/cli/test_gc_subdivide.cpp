@@ -7,9 +7,9 @@
 #include <algorithm>
 #include <set>
 
-#include "gcode/layer_marker.hpp"
-#include "gcode/layer_tracker.hpp"
-#include "gcode/line_reader.hpp"
+#include "gcode/core/layer_marker.hpp"
+#include "gcode/core/layer_tracker.hpp"
+#include "gcode/core/line_reader.hpp"
 #include "subdivide_check.hpp"
 #include "test_support.hpp"
 

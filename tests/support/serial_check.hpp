@@ -5,8 +5,8 @@
 #include <string_view>
 #include <vector>
 
-#include "gcode/line.hpp"
-#include "gcode/line_reader.hpp"
+#include "gcode/core/line.hpp"
+#include "gcode/core/line_reader.hpp"
 #include "gcode/serial/protocol.hpp"
 
 namespace gctest {

@@ -15,9 +15,9 @@
 #include <string_view>
 #include <vector>
 
-#include "gcode/arc.hpp"
-#include "gcode/line.hpp"
-#include "gcode/machine_state.hpp"
+#include "gcode/core/arc.hpp"
+#include "gcode/core/line.hpp"
+#include "gcode/core/machine_state.hpp"
 #include "test_support.hpp"
 
 namespace gctest {

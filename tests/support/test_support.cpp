@@ -11,8 +11,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "gcode/line.hpp"
-#include "gcode/line_reader.hpp"
+#include "gcode/core/line.hpp"
+#include "gcode/core/line_reader.hpp"
 
 namespace gctest {
 

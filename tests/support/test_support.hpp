@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "gcode/machine_state.hpp"
+#include "gcode/core/machine_state.hpp"
 
 namespace gctest {
 

@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "gcode/estimator.hpp"
-#include "gcode/line_reader.hpp"
-#include "gcode/machine_limits.hpp"
+#include "gcode/report/estimator.hpp"
+#include "gcode/core/line_reader.hpp"
+#include "gcode/report/planner_limits.hpp"
 #include "slicer_time.hpp"
 #include "test_support.hpp"
 
@@ -152,8 +152,8 @@ TEST_CASE("time so far and time queued add up to the final total", "[estimator]"
   CHECK(e.breakdown().total() == Approx(e.elapsed()).epsilon(1e-9));
 }
 
-TEST_CASE("machine limits from M201/M203/M204/M205, M566 and profiles", "[estimator][machine_limits]") {
-  gcode::MachineLimits l;
+TEST_CASE("machine limits from M201/M203/M204/M205, M566 and profiles", "[estimator][planner_limits]") {
+  gcode::PlannerLimits l;
   CHECK(l.apply(gcode::Line::parse("M201 X1000 Y900 Z200 E5000")));
   CHECK(l.apply(gcode::Line::parse("M203 X200 Y200 Z12 E120")));
   CHECK(l.apply(gcode::Line::parse("M204 P1250 R1250 T1500")));
@@ -171,7 +171,7 @@ TEST_CASE("machine limits from M201/M203/M204/M205, M566 and profiles", "[estima
   CHECK(l.junction_deviation == Approx(0.013));
 
   // RepRapFirmware: M203 in mm/min, recognised by the M566 that follows.
-  gcode::MachineLimits r;
+  gcode::PlannerLimits r;
   r.apply(gcode::Line::parse("M203 X12000 Y12000 Z720 E3600"));
   r.apply(gcode::Line::parse("M566 X480 Y480 Z24 E300"));
   CHECK(r.firmware == gcode::Firmware::RepRapFirmware);
@@ -179,15 +179,15 @@ TEST_CASE("machine limits from M201/M203/M204/M205, M566 and profiles", "[estima
   CHECK(r.jerk[0] == Approx(8));
 
   // PrusaSlicer config keys (first value = normal mode) cap M204.
-  gcode::MachineLimits p;
+  gcode::PlannerLimits p;
   CHECK(p.load_profile_text("; machine_max_acceleration_extruding = 1500,1250\n"
                             "; machine_max_feedrate_x = 500,200\n; unrelated = 3\n# comment\n") == 2);
   CHECK(p.max_feedrate[0] == 500);
   p.apply(gcode::Line::parse("M204 S3000"));
   CHECK(p.print_acceleration == 1500);
   CHECK_THROWS_AS(p.load_profile_text("max_feedrate_x = fast\n"), std::invalid_argument);
-  CHECK(!gcode::MachineLimits::preset("cura").empty());
-  gcode::MachineLimits c;
+  CHECK(!gcode::PlannerLimits::preset("cura").empty());
+  gcode::PlannerLimits c;
   CHECK(c.load_profile("cura") > 10);
   CHECK(c.print_acceleration == 4000);
   CHECK_THROWS(c.load_profile("/nonexistent/profile.ini"));

@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "gcode/layer_range.hpp"
+#include "gcode/core/layer_range.hpp"
 
 using gcode::LayerRange;
 using gcode::ZRange;

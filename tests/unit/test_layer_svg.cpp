@@ -3,9 +3,9 @@
 #include <string>
 #include <vector>
 
-#include "gcode/layer_svg.hpp"
-#include "gcode/layer_tracker.hpp"
-#include "gcode/line_reader.hpp"
+#include "gcode/report/layer_svg.hpp"
+#include "gcode/core/layer_tracker.hpp"
+#include "gcode/core/line_reader.hpp"
 #include "test_support.hpp"
 
 namespace {

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "gcode/layer_tracker.hpp"
+#include "gcode/core/layer_tracker.hpp"
 
 namespace {
 

@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "gcode/line.hpp"
+#include "gcode/core/line.hpp"
 
 using gcode::CommandKind;
 using gcode::Line;

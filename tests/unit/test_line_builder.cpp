@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
-#include "gcode/line.hpp"
-#include "gcode/line_builder.hpp"
+#include "gcode/core/line.hpp"
+#include "gcode/core/line_builder.hpp"
 
 TEST_CASE("LineBuilder writes shortest numbers and keeps the comment", "[line_builder]") {
   gcode::LineBuilder b;

@@ -5,8 +5,8 @@
 #include <string>
 #include <thread>
 
-#include "gcode/line_reader.hpp"
-#include "gcode/output_buffer.hpp"
+#include "gcode/core/line_reader.hpp"
+#include "gcode/core/output_buffer.hpp"
 #include "test_support.hpp"
 
 namespace {

@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "gcode/machine_state.hpp"
+#include "gcode/core/machine_state.hpp"
 #include "test_support.hpp"
 
 using gcode::kE;

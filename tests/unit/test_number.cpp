@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "gcode/number.hpp"
+#include "gcode/core/number.hpp"
 
 using gcode::parse_number;
 

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "gcode/line.hpp"
-#include "gcode/machine_state.hpp"
-#include "gcode/pause_sequence.hpp"
+#include "gcode/core/line.hpp"
+#include "gcode/core/machine_state.hpp"
+#include "gcode/transform/pause_sequence.hpp"
 #include "test_support.hpp"
 
 using namespace gcode;

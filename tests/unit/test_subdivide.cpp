@@ -3,12 +3,12 @@
 #include <stdexcept>
 #include <string>
 
-#include "gcode/diagnostics.hpp"
-#include "gcode/line.hpp"
-#include "gcode/line_reader.hpp"
-#include "gcode/machine_state.hpp"
-#include "gcode/number.hpp"
-#include "gcode/subdivide.hpp"
+#include "gcode/core/diagnostics.hpp"
+#include "gcode/core/line.hpp"
+#include "gcode/core/line_reader.hpp"
+#include "gcode/core/machine_state.hpp"
+#include "gcode/core/number.hpp"
+#include "gcode/transform/subdivide.hpp"
 #include "subdivide_check.hpp"
 #include "test_support.hpp"
 

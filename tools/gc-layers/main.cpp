@@ -5,18 +5,18 @@
 #include <cstdio>
 #include <optional>
 
-#include "gcode/diagnostics.hpp"
-#include "gcode/layer_extract.hpp"
-#include "gcode/layer_range.hpp"
-#include "gcode/layer_report.hpp"
-#include "gcode/layer_svg.hpp"
-#include "gcode/layer_table.hpp"
-#include "gcode/layer_time.hpp"
-#include "gcode/layer_tracker.hpp"
-#include "gcode/line_reader.hpp"
-#include "gcode/output_buffer.hpp"
-#include "gcode/printer_limits.hpp"
-#include "gcode/tool_io.hpp"
+#include "gcode/core/diagnostics.hpp"
+#include "gcode/transform/layer_extract.hpp"
+#include "gcode/core/layer_range.hpp"
+#include "gcode/report/layer_report.hpp"
+#include "gcode/report/layer_svg.hpp"
+#include "gcode/report/layer_table.hpp"
+#include "gcode/report/layer_time.hpp"
+#include "gcode/core/layer_tracker.hpp"
+#include "gcode/core/line_reader.hpp"
+#include "gcode/core/output_buffer.hpp"
+#include "gcode/core/print_area.hpp"
+#include "gcode/cli/io.hpp"
 #include "gcode/version.hpp"
 
 namespace {
@@ -93,7 +93,7 @@ int write_pictures(const Options& o, gcode::LayerDrawer& drawer, const gcode::La
   svg.travel = !o.no_travel;
   svg.size_px = o.svg_size;
   for (int i = 0; i < tracker.feature_count(); ++i) svg.feature_names.push_back(tracker.feature_name(i));
-  gcode::PrinterLimits printer;
+  gcode::PrintArea printer;
   if (gcode::scan_file_limits(input.fd(), printer) && printer.has_bed)
     svg.bed = {{printer.bed.min_x, printer.bed.min_y}, {printer.bed.max_x, printer.bed.min_y},
                {printer.bed.max_x, printer.bed.max_y}, {printer.bed.min_x, printer.bed.max_y}};

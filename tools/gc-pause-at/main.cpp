@@ -2,7 +2,7 @@
 // layer boundaries. The pause block goes where gcode::LayerTracker says a
 // layer begins: after the last move of the previous layer, before the move
 // to the new layer's Z. The sequence itself comes from pause_sequence.hpp,
-// the bed and height limits from printer_limits.hpp.
+// the bed and height limits from core/print_area.hpp.
 #include <sys/stat.h>
 
 #include <CLI/CLI.hpp>
@@ -17,15 +17,15 @@
 #include <string>
 #include <vector>
 
-#include "gcode/diagnostics.hpp"
-#include "gcode/layer_range.hpp"
-#include "gcode/layer_tracker.hpp"
-#include "gcode/line_reader.hpp"
-#include "gcode/number.hpp"
-#include "gcode/output_buffer.hpp"
-#include "gcode/pause_sequence.hpp"
-#include "gcode/printer_limits.hpp"
-#include "gcode/tool_io.hpp"
+#include "gcode/core/diagnostics.hpp"
+#include "gcode/core/layer_range.hpp"
+#include "gcode/core/layer_tracker.hpp"
+#include "gcode/core/line_reader.hpp"
+#include "gcode/core/number.hpp"
+#include "gcode/core/output_buffer.hpp"
+#include "gcode/transform/pause_sequence.hpp"
+#include "gcode/core/print_area.hpp"
+#include "gcode/cli/io.hpp"
 
 namespace {
 
@@ -162,7 +162,7 @@ struct Park {
   bool given = false;  // --park
   bool from_bed = false;
   double x = 0, y = 0;
-  gcode::PrinterLimits limits;
+  gcode::PrintArea limits;
 };
 
 class PauseWriter : public gcode::LayerSink {

@@ -13,14 +13,14 @@
 #include <optional>
 #include <string>
 
-#include "gcode/diagnostics.hpp"
+#include "gcode/core/diagnostics.hpp"
 #include "gcode/serial/event_loop.hpp"
 #include "gcode/serial/port.hpp"
 #include "gcode/serial/send_session.hpp"
 #include "gcode/serial/sender.hpp"
 #include "gcode/serial/virtual_link.hpp"
 #include "gcode/serial/virtual_printer.hpp"
-#include "gcode/tool_io.hpp"
+#include "gcode/cli/io.hpp"
 #include "gcode/version.hpp"
 
 namespace {

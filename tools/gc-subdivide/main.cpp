@@ -10,13 +10,13 @@
 #include <string>
 #include <vector>
 
-#include "gcode/diagnostics.hpp"
-#include "gcode/layer_range.hpp"
-#include "gcode/layer_tracker.hpp"
-#include "gcode/line_reader.hpp"
-#include "gcode/output_buffer.hpp"
-#include "gcode/subdivide.hpp"
-#include "gcode/tool_io.hpp"
+#include "gcode/core/diagnostics.hpp"
+#include "gcode/core/layer_range.hpp"
+#include "gcode/core/layer_tracker.hpp"
+#include "gcode/core/line_reader.hpp"
+#include "gcode/core/output_buffer.hpp"
+#include "gcode/transform/subdivide.hpp"
+#include "gcode/cli/io.hpp"
 #include "gcode/version.hpp"
 
 namespace {

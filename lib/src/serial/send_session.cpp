@@ -10,7 +10,7 @@
 
 #include <fmt/format.h>
 
-#include "gcode/line.hpp"
+#include "gcode/core/line.hpp"
 #include "gcode/serial/protocol.hpp"
 
 namespace gcode::serial {

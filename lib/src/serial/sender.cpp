@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-#include "gcode/line.hpp"
+#include "gcode/core/line.hpp"
 
 namespace gcode::serial {
 

@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 
-#include "gcode/line.hpp"
+#include "gcode/core/line.hpp"
 #include "gcode/serial/protocol.hpp"
 
 namespace gcode::serial {

@@ -7,9 +7,9 @@
 #include <cstdint>
 #include <string>
 
-#include "gcode/diagnostics.hpp"
-#include "gcode/layer_marker.hpp"
-#include "gcode/layer_tracker.hpp"
+#include "gcode/core/diagnostics.hpp"
+#include "gcode/core/layer_marker.hpp"
+#include "gcode/core/layer_tracker.hpp"
 #include "gcode/serial/event_loop.hpp"
 #include "gcode/serial/sender.hpp"
 

@@ -31,7 +31,7 @@
 #include <string>
 #include <string_view>
 
-#include "gcode/machine_state.hpp"
+#include "gcode/core/machine_state.hpp"
 
 namespace gcode::serial {
 

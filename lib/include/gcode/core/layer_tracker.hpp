@@ -1,0 +1,153 @@
+#pragma once
+// Splits a G-code stream into start code, layers and end code, as it streams.
+//
+// The model (background.md §1): start code before the first layer, then the
+// layers, then end code = everything after the last extruding move of the last
+// layer. Layer starts come from slicer markers (layer_marker.hpp) or, in files
+// without any, from the Z heuristic: a layer starts with the first extruding
+// move that begins at a Z other than the current layer's. Z-hops come back
+// down before extruding, and vase-mode Z rises inside extruding moves, so
+// neither starts a layer.
+//
+// Where exactly does a layer begin? Between the last extrusion of one layer
+// and the first of the next lie retracts, lifts, travel and comments. The
+// boundary is put at the earlier of the slicer's marker and the first move
+// that changes Z after the last extrusion: CuraEngine writes the move to the
+// next layer's Z *before* its ;LAYER:n marker, and that move belongs to the
+// new layer. So the lines after each extrusion are held back until the next
+// extrusion (or the end) decides where they go; memory is bounded by that gap,
+// not by the file.
+//
+// Until the first marker or a few layers' worth of extrusion show which kind
+// of file this is, lines are held too: a purge line before the first marker is
+// start code, while in an unmarked file it is a layer of its own.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "gcode/core/layer_marker.hpp"
+#include "gcode/core/line.hpp"
+#include "gcode/core/line_reader.hpp"
+#include "gcode/core/machine_state.hpp"
+
+namespace gcode {
+
+enum class Region : std::uint8_t { StartCode, Layer, EndCode };
+
+struct LayerInfo {
+  int index = 0;               // 1 = first printed layer
+  bool has_slicer_number = false;
+  long slicer_number = 0;      // the slicer's own number (Cura's ;LAYER:n)
+  double z = 0;                // the layer's Z (marker ;Z: or where extrusion starts)
+  double height = 0;           // marker ;HEIGHT: or Z minus the previous layer's Z
+  std::uint64_t first_line = 0;  // line number where the layer begins
+  std::uint64_t offset = 0;      // byte offset where the layer begins
+  bool empty = false;          // a marker with no extrusion before the next one
+};
+
+// Everything known about one line when it reaches the sink.
+struct TrackedLine {
+  const RawLine& raw;
+  const Line& line;
+  const Move& move;
+  const MachineState& state;   // after the line
+  Region region;
+  int layer;                   // current layer index; 0 in the start code
+  int feature;                 // index into LayerTracker::feature_name, -1 if none yet
+};
+
+class LayerSink {
+ public:
+  virtual ~LayerSink() = default;
+  // Just before the first line of a layer; `before` is the state at that point.
+  virtual void on_layer(const LayerInfo& layer, const MachineState& before) {
+    (void)layer;
+    (void)before;
+  }
+  // Just before the first line of the end code (called even if it is empty).
+  virtual void on_end_code(std::uint64_t first_line, std::uint64_t offset, const MachineState& before) {
+    (void)first_line;
+    (void)offset;
+    (void)before;
+  }
+  virtual void on_line(const TrackedLine& line) = 0;
+};
+
+enum class LayerMode : std::uint8_t { Undecided, Markers, Heuristic };
+
+class LayerTracker {
+ public:
+  LayerTracker(LayerSink& sink, const LayerMarkers& markers);
+
+  // Feeds one line. It reaches the sink now or later, always in input order.
+  void push(const RawLine& raw);
+  // End of input: releases every held line.
+  void finish();
+
+  LayerMode mode() const { return mode_; }
+  int layer_count() const { return layers_; }
+  // The state after the last line pushed (not necessarily emitted yet).
+  const MachineState& state() const { return state_; }
+  const std::string& feature_name(int id) const { return features_[static_cast<std::size_t>(id)]; }
+  int feature_count() const { return static_cast<int>(features_.size()); }
+
+ private:
+  struct Item {
+    std::size_t text_pos = 0;
+    std::uint32_t text_len = 0;
+    std::uint8_t ending_len = 0;
+    std::uint64_t number = 0;
+    std::uint64_t offset = 0;
+    MachineState after;
+    Move move;
+    int feature = -1;
+    CommentInfo marker;  // only marker / z / height fields are kept
+  };
+  struct Held {
+    std::vector<Item> items;
+    std::string arena;
+    void clear() {
+      items.clear();
+      arena.clear();
+    }
+    std::size_t add(const RawLine& raw);
+  };
+  struct View;  // an item and where its text lives
+
+  static void keep(Held& held, const View& v);
+  void step(const View& v, const MachineState& before);
+  void hold(const View& v, const MachineState& before);
+  void resolve_undecided(LayerMode mode);
+  void resolve_tail_for_extrusion(const View& extrusion);
+  void resolve_markers(const View& extrusion);
+  void resolve_heuristic(const View& extrusion);
+  void emit_tail(std::size_t from, std::size_t to);
+  void emit(const RawLine& raw, const Line& line, const Move& move, const MachineState& after, int feature);
+  void emit_item(const Item& item, const std::string& arena);
+  void begin_layer(LayerInfo info, std::size_t boundary);
+  const MachineState& tail_state_before(std::size_t index) const;
+  int feature_id(std::string_view name);
+
+  LayerSink& sink_;
+  const LayerMarkers& markers_;
+  LayerMode mode_ = LayerMode::Undecided;
+  MachineState state_;
+  MachineState before_tail_;
+  Held pending_;   // everything, while the mode is undecided
+  Held tail_;      // lines since the last extrusion
+  std::vector<double> undecided_z_;  // distinct extrusion Z seen while undecided
+  std::vector<std::string> features_;
+  int feature_ = -1;
+  int layers_ = 0;
+  Region region_ = Region::StartCode;
+  double layer_z_ = 0;
+  bool finished_ = false;
+};
+
+// Pushes every line of `reader` through `tracker`, then finishes it.
+void track_all(LineReader& reader, LayerTracker& tracker);
+// Reads `reader` to the end and returns how many layers it holds (for
+// selections counted from the end, such as "the last 3 layers").
+int count_layers(LineReader& reader, const LayerMarkers& markers);
+
+}  // namespace gcode

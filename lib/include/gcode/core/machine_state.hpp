@@ -1,0 +1,83 @@
+#pragma once
+// The modal state of a Marlin-style printer, updated line by line.
+//
+// Coordinates are kept in millimetres in the file's own coordinate system (what
+// an absolute X word means now); `offset` holds what G92 shifted, so
+// machine position = position + offset. Filament is counted separately so a
+// G92 E0 or a switch between M82 and M83 never changes how much was extruded.
+#include <array>
+#include <cstdint>
+
+#include "gcode/core/line.hpp"
+
+namespace gcode {
+
+enum Axis : int { kX = 0, kY = 1, kZ = 2, kE = 3 };
+
+struct Vec4 {
+  std::array<double, 4> v{};
+  double& operator[](int i) { return v[static_cast<std::size_t>(i)]; }
+  double operator[](int i) const { return v[static_cast<std::size_t>(i)]; }
+};
+
+enum class MoveKind : std::uint8_t {
+  None,         // not a motion command
+  Linear,       // G0 / G1
+  Arc,          // G2 / G3
+  Home,         // G28
+  SetPosition,  // G92
+  FirmwareRetract,
+  FirmwareUnretract,
+};
+
+// What one line did to the machine.
+struct Move {
+  MoveKind kind = MoveKind::None;
+  Vec4 start;                 // file coordinates before the line (E: the E coordinate)
+  Vec4 end;                   // after the line
+  double filament = 0;        // mm of filament pushed (negative = retraction), whatever the E mode
+  double length = 0;          // XYZ path length in mm (arc length for arcs)
+  double xy_length = 0;
+  double feedrate = 0;        // mm/min in effect for the move
+  bool extruding = false;     // moves the head and pushes filament
+  bool travel = false;        // moves the head, no filament
+  bool z_changed = false;
+  bool is_arc_clockwise = false;
+  bool ignored = false;       // a malformed move the state did not apply
+  // Z-hop: a non-extruding move that raises Z is a lift; the non-extruding
+  // move that brings Z back down to where the lift began is the hop's return.
+  // A lift followed by extrusion at the new height was a layer change instead.
+  bool z_lift = false;
+  bool z_hop_return = false;
+
+  bool moves_head() const { return length > 0; }
+  bool retraction() const { return filament < 0 && length == 0; }
+  bool unretraction() const { return filament > 0 && length == 0; }
+};
+
+struct MachineState {
+  Vec4 position;              // file coordinates, mm
+  Vec4 offset;                // G92 shift: machine = position + offset
+  std::array<bool, 4> known{};  // whether each axis position is known (homed or set)
+  double feedrate = 0;        // mm/min, modal F
+  bool relative_xyz = false;  // G91
+  bool relative_e = false;    // M83, or G91 (Marlin couples E to G90/G91)
+  bool inches = false;        // G20
+  bool firmware_retracted = false;  // G10 without G11 yet
+  bool uses_firmware_retraction = false;  // a bare G10 or G11 has been seen
+  int tool = 0;
+  double filament_total = 0;  // net mm of filament pushed since the start
+  std::array<double, 8> hotend_target{};  // M104/M109 S per tool
+  double bed_target = 0;
+  double fan = 0;             // 0..255, M106/M107
+  bool lifted = false;        // Z raised by a non-extruding move, not yet back down or extruded at
+  double lift_base_z = 0;     // the Z before that lift
+
+  // Applies one line; returns what it did. Lines that are not motion change
+  // modes (G90, M83, ...) and return a Move of kind None.
+  Move apply(const Line& line);
+
+  double machine(int axis) const { return position[axis] + offset[axis]; }
+};
+
+}  // namespace gcode

@@ -1,0 +1,64 @@
+#pragma once
+// What a G-code file says about the printer it was sliced for: the bed, the
+// height limit, and the extent of the print, from the comments slicers write.
+//
+//   PrusaSlicer / Slic3r / SuperSlicer   ; bed_shape = 0x0,250x0,250x210,0x210
+//   (config block at the END of file)    ; max_print_height = 210
+//   OrcaSlicer / Bambu                   ; printable_area = 0x0,256x0,256x256,0x256
+//                                        ; printable_height = 250
+//   CuraEngine header (the print's box)  ;MINX:94 ;MINY:94 ;MAXX:126 ;MAXY:126 ;MAXZ:20.4
+//   Cura front end machine settings      ;SETTING_3 {... machine_width = 220\\n
+//                                        machine_depth = 220\\n machine_height = 250 ...}
+//   Ultimaker Griffin header             ;PRINT.SIZE.MIN.X:94 ... ;PRINT.SIZE.MAX.Z:20.4
+//
+// Prusa puts its config after the G-code, so a tool that needs the bed before
+// the first pause reads a regular file's head and tail first (scan_file), and
+// on a pipe only what it has seen (the header, for Cura).
+#include <string>
+#include <string_view>
+
+namespace gcode {
+
+struct Box2 {
+  double min_x = 0, min_y = 0, max_x = 0, max_y = 0;
+  bool contains(double x, double y) const { return x >= min_x && x <= max_x && y >= min_y && y <= max_y; }
+};
+
+struct PrintArea {
+  bool has_bed = false;
+  Box2 bed;               // the printable area in file coordinates
+  bool has_max_z = false;
+  double max_z = 0;       // the printer's height limit
+  bool has_print_box = false;
+  Box2 print_box;         // the print's XY extent, when the slicer wrote it
+  bool has_print_top = false;
+  double print_top = 0;   // the print's highest Z, when the slicer wrote it
+
+  // Fills what `other` knows and this does not.
+  void merge(const PrintArea& other);
+};
+
+class PrintAreaScanner {
+ public:
+  // Looks at one line (anything; only comments are read).
+  void observe(std::string_view line_text);
+  // Everything seen so far.
+  PrintArea limits() const;
+
+ private:
+  void observe_comment(std::string_view c);
+
+  PrintArea found_;
+  double cura_box_[6] = {};
+  unsigned cura_seen_ = 0;  // bit per MINX..MAXZ
+  std::string cura_settings_;  // ;SETTING_3 payloads, joined
+};
+
+// Reads the first and last part of a regular file (pread, the file offset is
+// left alone) and scans them. Returns false when `fd` is not a regular file.
+bool scan_file_limits(int fd, PrintArea& limits);
+
+// Scans an in-memory text (a header held back from a pipe, tests).
+PrintArea scan_text_limits(std::string_view text);
+
+}  // namespace gcode

@@ -1,0 +1,91 @@
+#pragma once
+// Pictures of layers seen from above, as SVG.
+//
+// A LayerDrawer collects the paths of the selected layers while the file
+// streams (fed from a LayerSink): extrusions by feature (;TYPE:) with their
+// width (;WIDTH: when the slicer writes it, else filament volume / (length x
+// layer height)), travel, retraction points, and the extrusions of the layer
+// below each selected one. Consecutive segments of the same style are merged
+// into one polyline, which keeps the files small. Memory: the selected layers
+// plus the one being read.
+//
+// layer_svg() draws one layer; layer_sheet_svg() puts several in a grid with
+// one legend. The bed outline is drawn when the caller knows it
+// (print_area.hpp reads it from the file).
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "gcode/core/layer_tracker.hpp"
+
+namespace gcode {
+
+using Polygon = std::vector<std::array<double, 2>>;
+
+struct DrawnPath {
+  bool travel = false;
+  int feature = -1;     // LayerTracker feature id, -1 for none
+  float width = 0;      // mm (extrusions)
+  std::vector<float> xy;  // x0 y0 x1 y1 ...
+};
+
+struct LayerDrawing {
+  int layer = 0;
+  double z = 0;
+  double height = 0;
+  double seconds = -1;           // the layer's print time, < 0 when unknown
+  std::vector<DrawnPath> paths;  // in print order
+  std::vector<DrawnPath> below;  // extrusions of the layer below
+  std::vector<float> retractions;  // x y pairs
+};
+
+class LayerDrawer {
+ public:
+  // `selected(layer)` says which layers to keep.
+  explicit LayerDrawer(std::function<bool(int)> selected, double filament_diameter = 1.75);
+
+  void on_layer(const LayerInfo& layer);
+  void on_line(const TrackedLine& t);
+  void finish();
+
+  std::vector<LayerDrawing>& drawings() { return done_; }
+
+ private:
+  void add_segment(bool travel, int feature, float width, double x0, double y0, double x1, double y1);
+  void close_layer();
+
+  std::function<bool(int)> selected_;
+  double filament_area_;
+  LayerDrawing current_;
+  bool current_selected_ = false;
+  std::vector<DrawnPath> previous_;  // extrusions of the layer before the current one
+  std::vector<LayerDrawing> done_;
+  double width_comment_ = 0;  // the last ;WIDTH:
+  bool in_layer_ = false;
+};
+
+struct SvgOptions {
+  bool travel = true;        // dashed travel lines
+  bool below = true;         // the layer below in grey
+  bool retractions = true;   // retraction points
+  double size_px = 800;      // the longer side of one layer's picture
+  Polygon bed;               // outline, drawn where it falls in the picture; empty = unknown
+  std::vector<std::string> feature_names;  // by feature id
+};
+
+std::string layer_svg(const LayerDrawing& drawing, const SvgOptions& options);
+// `columns` 0 = about square.
+std::string layer_sheet_svg(const std::vector<LayerDrawing>& drawings, const SvgOptions& options, int columns = 0);
+
+// "layer-{}.svg" or "layer-%d.svg" with the layer number; a path without a
+// placeholder is returned as it is.
+std::string expand_layer_pattern(std::string_view pattern, int layer);
+bool has_layer_placeholder(std::string_view pattern);
+
+// A fixed colour per feature name (slicers' names, case-insensitive), as "#rrggbb".
+std::string feature_color(std::string_view name);
+
+}  // namespace gcode

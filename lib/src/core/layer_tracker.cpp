@@ -1,0 +1,300 @@
+#include "gcode/core/layer_tracker.hpp"
+
+#include <cmath>
+
+namespace gcode {
+
+namespace {
+
+// Z values are written with at most 3-4 decimals; anything closer is the same Z.
+constexpr double kSameZ = 1e-4;
+// While the kind of file is unknown: give up waiting for a marker after this
+// many distinct extrusion heights or this much held text.
+constexpr std::size_t kUndecidedLayers = 3;
+constexpr std::size_t kUndecidedBytes = 8u << 20;
+// Lines held after the last extrusion beyond this are released into the
+// current region (a pathological file: megabytes with no extrusion).
+constexpr std::size_t kTailBytes = 64u << 20;
+
+constexpr std::size_t npos = static_cast<std::size_t>(-1);
+
+unsigned kind_bit(MarkerKind k) { return 1u << static_cast<unsigned>(k); }
+
+}  // namespace
+
+struct LayerTracker::View {
+  const RawLine& raw;
+  const Line& line;
+  const Move& move;
+  const MachineState& after;
+  int feature;
+  const CommentInfo& info;
+};
+
+std::size_t LayerTracker::Held::add(const RawLine& raw) {
+  std::size_t pos = arena.size();
+  arena.append(raw.text);
+  arena.append(raw.ending);
+  return pos;
+}
+
+// Built in place: an Item is a few hundred bytes and a third of the lines of
+// a typical file are held.
+void LayerTracker::keep(Held& held, const View& v) {
+  std::size_t pos = held.add(v.raw);
+  Item& item = held.items.emplace_back();
+  item.text_pos = pos;
+  item.text_len = static_cast<std::uint32_t>(v.raw.text.size());
+  item.ending_len = static_cast<std::uint8_t>(v.raw.ending.size());
+  item.number = v.raw.number;
+  item.offset = v.raw.offset;
+  item.after = v.after;
+  item.move = v.move;
+  item.feature = v.feature;
+  item.marker = v.info;
+  item.marker.type = {};
+}
+
+LayerTracker::LayerTracker(LayerSink& sink, const LayerMarkers& markers) : sink_(sink), markers_(markers) {}
+
+int LayerTracker::feature_id(std::string_view name) {
+  for (std::size_t i = 0; i < features_.size(); ++i)
+    if (features_[i] == name) return static_cast<int>(i);
+  features_.emplace_back(name);
+  return static_cast<int>(features_.size() - 1);
+}
+
+void LayerTracker::push(const RawLine& raw) {
+  Line line = Line::parse(raw.text);
+  CommentInfo info;
+  if (line.kind == CommandKind::None && !line.comment.empty()) {
+    info = markers_.classify(line.comment_text());
+    if (info.is_type) feature_ = feature_id(info.type);
+  }
+  // The state just before a held run starts is what a sink sees at a boundary
+  // placed on the run's first line. Only hold() reads `before`, and only for
+  // a run's first line, so before_tail_ is the right thing to pass.
+  if (mode_ != LayerMode::Undecided && tail_.items.empty()) before_tail_ = state_;
+  Move move = state_.apply(line);
+  step(View{raw, line, move, state_, feature_, info}, before_tail_);
+}
+
+void LayerTracker::step(const View& v, const MachineState& before) {
+  if (mode_ == LayerMode::Undecided) {
+    keep(pending_, v);
+    if (v.info.marker != MarkerKind::None) {
+      resolve_undecided(LayerMode::Markers);
+    } else if (v.move.extruding) {
+      double z = v.move.start[kZ];
+      bool seen = false;
+      for (double s : undecided_z_) seen = seen || std::fabs(s - z) <= kSameZ;
+      if (!seen) undecided_z_.push_back(z);
+      if (undecided_z_.size() >= kUndecidedLayers || pending_.arena.size() > kUndecidedBytes)
+        resolve_undecided(LayerMode::Heuristic);
+    }
+    return;
+  }
+  if (v.move.extruding) {
+    resolve_tail_for_extrusion(v);
+    emit(v.raw, v.line, v.move, v.after, v.feature);
+    if (mode_ == LayerMode::Heuristic || layers_ > 0) layer_z_ = v.move.end[kZ];
+    return;
+  }
+  hold(v, before);
+}
+
+void LayerTracker::hold(const View& v, const MachineState& before) {
+  if (tail_.items.empty() && &before != &before_tail_) before_tail_ = before;
+  keep(tail_, v);
+  if (tail_.arena.size() > kTailBytes) {
+    emit_tail(0, tail_.items.size());
+    tail_.clear();
+  }
+}
+
+void LayerTracker::resolve_undecided(LayerMode mode) {
+  mode_ = mode;
+  Held old = std::move(pending_);
+  pending_.clear();
+  MachineState initial;
+  for (std::size_t i = 0; i < old.items.size(); ++i) {
+    const Item& it = old.items[i];
+    RawLine raw;
+    raw.text = std::string_view(old.arena).substr(it.text_pos, it.text_len);
+    raw.ending = std::string_view(old.arena).substr(it.text_pos + it.text_len, it.ending_len);
+    raw.number = it.number;
+    raw.offset = it.offset;
+    Line line = Line::parse(raw.text);
+    step(View{raw, line, it.move, it.after, it.feature, it.marker}, i == 0 ? initial : old.items[i - 1].after);
+  }
+}
+
+void LayerTracker::resolve_tail_for_extrusion(const View& extrusion) {
+  if (mode_ == LayerMode::Markers) {
+    resolve_markers(extrusion);
+  } else {
+    resolve_heuristic(extrusion);
+  }
+  tail_.clear();
+}
+
+const MachineState& LayerTracker::tail_state_before(std::size_t index) const {
+  return index == 0 ? before_tail_ : tail_.items[index - 1].after;
+}
+
+void LayerTracker::begin_layer(LayerInfo info, std::size_t boundary) {
+  info.index = ++layers_;
+  region_ = Region::Layer;
+  sink_.on_layer(info, tail_state_before(boundary));
+}
+
+void LayerTracker::resolve_markers(const View& extrusion) {
+  // Plain fields without initialisers: zeroing 64 CommentInfos on every
+  // extrusion was a quarter of a full pass (bench/run.sh, perf).
+  struct Group {
+    std::size_t index;
+    unsigned kinds;
+    bool has_number, has_z, has_height;
+    long number;
+    double z, height;
+  };
+  if (tail_.items.empty()) return;  // the common case: extrusion follows extrusion
+  // Markers of different kinds in one gap are one layer (PrusaSlicer profiles
+  // write ;LAYER_CHANGE and a custom ;LAYER:n); a repeated kind is a new one.
+  Group groups[64];
+  std::size_t count = 0;
+  std::size_t first_z_change = npos;
+  const auto& items = tail_.items;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const CommentInfo& c = items[i].marker;
+    if (first_z_change == npos && items[i].move.z_changed) first_z_change = i;
+    if (c.marker != MarkerKind::None) {
+      if (count == 0 || (groups[count - 1].kinds & kind_bit(c.marker)) != 0) {
+        if (count == 64) {
+          // Dozens of empty layers in one gap: fold the rest into the last one.
+          groups[count - 1].kinds = 0;
+        } else {
+          groups[count++] = Group{i, 0, false, false, false, 0, 0, 0};
+        }
+      }
+      Group& g = groups[count - 1];
+      g.kinds |= kind_bit(c.marker);
+      if (c.has_number && !g.has_number) {
+        g.has_number = true;
+        g.number = c.number;
+      }
+    }
+    if (count > 0 && c.has_z && !groups[count - 1].has_z) {
+      groups[count - 1].has_z = true;
+      groups[count - 1].z = c.z;
+    }
+    if (count > 0 && c.has_height && !groups[count - 1].has_height) {
+      groups[count - 1].has_height = true;
+      groups[count - 1].height = c.height;
+    }
+  }
+  if (count == 0) {
+    emit_tail(0, items.size());
+    return;
+  }
+  std::size_t first = groups[0].index;
+  if (layers_ > 0 && first_z_change < first) first = first_z_change;
+  emit_tail(0, first);
+  for (std::size_t g = 0; g < count; ++g) {
+    bool last = g + 1 == count;
+    std::size_t from = g == 0 ? first : groups[g].index;
+    std::size_t to = last ? items.size() : groups[g + 1].index;
+    LayerInfo info;
+    info.has_slicer_number = groups[g].has_number;
+    info.slicer_number = groups[g].number;
+    info.z = groups[g].has_z ? groups[g].z
+             : last          ? extrusion.move.start[kZ]
+                             : items[groups[g].index].after.position[kZ];
+    double previous_z = layers_ > 0 ? layer_z_ : 0;
+    info.height = groups[g].has_height ? groups[g].height : info.z - previous_z;
+    info.empty = !last;
+    info.first_line = from < items.size() ? items[from].number : extrusion.raw.number;
+    info.offset = from < items.size() ? items[from].offset : extrusion.raw.offset;
+    begin_layer(info, from);
+    layer_z_ = info.z;
+    emit_tail(from, to);
+  }
+}
+
+void LayerTracker::resolve_heuristic(const View& extrusion) {
+  const auto& items = tail_.items;
+  double z = extrusion.move.start[kZ];
+  if (layers_ > 0 && std::fabs(z - layer_z_) <= kSameZ) {
+    emit_tail(0, items.size());
+    return;
+  }
+  // First layer: the move that went down to it. Later layers: the first Z
+  // change after the previous layer's last extrusion (lift or step up).
+  std::size_t boundary = items.size();
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (!items[i].move.z_changed) continue;
+    boundary = i;
+    if (layers_ > 0) break;
+  }
+  emit_tail(0, boundary);
+  LayerInfo info;
+  info.z = z;
+  info.height = layers_ > 0 ? z - layer_z_ : z;
+  info.first_line = boundary < items.size() ? items[boundary].number : extrusion.raw.number;
+  info.offset = boundary < items.size() ? items[boundary].offset : extrusion.raw.offset;
+  begin_layer(info, boundary);
+  emit_tail(boundary, items.size());
+}
+
+void LayerTracker::emit(const RawLine& raw, const Line& line, const Move& move, const MachineState& after,
+                        int feature) {
+  sink_.on_line(TrackedLine{raw, line, move, after, region_, layers_, feature});
+}
+
+void LayerTracker::emit_item(const Item& item, const std::string& arena) {
+  RawLine raw;
+  raw.text = std::string_view(arena).substr(item.text_pos, item.text_len);
+  raw.ending = std::string_view(arena).substr(item.text_pos + item.text_len, item.ending_len);
+  raw.number = item.number;
+  raw.offset = item.offset;
+  Line line = Line::parse(raw.text);
+  emit(raw, line, item.move, item.after, item.feature);
+}
+
+void LayerTracker::emit_tail(std::size_t from, std::size_t to) {
+  for (std::size_t i = from; i < to; ++i) emit_item(tail_.items[i], tail_.arena);
+}
+
+void LayerTracker::finish() {
+  if (finished_) return;
+  finished_ = true;
+  if (mode_ == LayerMode::Undecided) resolve_undecided(LayerMode::Heuristic);
+  if (layers_ > 0) {
+    std::uint64_t first_line = 0, offset = 0;
+    if (!tail_.items.empty()) {
+      first_line = tail_.items.front().number;
+      offset = tail_.items.front().offset;
+    }
+    sink_.on_end_code(first_line, offset, tail_state_before(0));
+    region_ = Region::EndCode;
+  }
+  emit_tail(0, tail_.items.size());
+  tail_.clear();
+}
+
+void track_all(LineReader& reader, LayerTracker& tracker) {
+  RawLine raw;
+  while (reader.next(raw)) tracker.push(raw);
+  tracker.finish();
+}
+
+int count_layers(LineReader& reader, const LayerMarkers& markers) {
+  struct Counter : LayerSink {
+    void on_line(const TrackedLine&) override {}
+  } counter;
+  LayerTracker tracker(counter, markers);
+  track_all(reader, tracker);
+  return tracker.layer_count();
+}
+
+}  // namespace gcode

@@ -1,0 +1,210 @@
+#include "gcode/core/machine_state.hpp"
+
+#include <cmath>
+
+#include "gcode/core/arc.hpp"
+
+namespace gcode {
+
+namespace {
+
+constexpr double kInch = 25.4;
+constexpr char kAxisLetters[4] = {'X', 'Y', 'Z', 'E'};
+
+// A bare G10/G11 is firmware retraction. RepRapFirmware's "G10 P0 S210" sets
+// tool temperatures and "G10 L2 ..." sets work offsets: those are not.
+bool is_firmware_retraction(const Line& line) {
+  for (const Word& w : line)
+    if (w.letter == 'P' || w.letter == 'L' || w.letter == 'R' || w.letter == 'X' || w.letter == 'Y' ||
+        w.letter == 'Z')
+      return false;
+  return true;
+}
+
+void apply_motion(MachineState& s, const Line& line, Move& m) {
+  double scale = s.inches ? kInch : 1.0;
+  // One pass over the words instead of a find() per letter (this runs for
+  // most lines of a file); the first word of a letter counts, as with find().
+  const Word* axis[4] = {};
+  const Word* f = nullptr;
+  for (const Word& w : line) {
+    switch (w.letter) {
+      case 'X': if (axis[kX] == nullptr) axis[kX] = &w; break;
+      case 'Y': if (axis[kY] == nullptr) axis[kY] = &w; break;
+      case 'Z': if (axis[kZ] == nullptr) axis[kZ] = &w; break;
+      case 'E': if (axis[kE] == nullptr) axis[kE] = &w; break;
+      case 'F': if (f == nullptr) f = &w; break;
+      default: break;
+    }
+  }
+  if (f != nullptr && f->has_value && f->value > 0) s.feedrate = f->value * scale;
+  // The new position is worked out in scalars and only then stored: reading
+  // s.position back as a whole right after storing single axes defeats the
+  // CPU's store forwarding, which cost more than the rest of this function.
+  const double start[4] = {s.position[kX], s.position[kY], s.position[kZ], s.position[kE]};
+  double end[4] = {start[0], start[1], start[2], start[3]};
+  for (int a = 0; a < 4; ++a) {
+    const Word* w = axis[a];
+    if (w == nullptr || !w->has_value) continue;
+    double v = w->value * scale;
+    bool relative = a == kE ? s.relative_e : s.relative_xyz;
+    if (relative) {
+      end[a] += v;
+    } else {
+      end[a] = v;
+      s.known[a] = true;
+    }
+  }
+  for (int a = 0; a < 4; ++a) {
+    s.position[a] = end[a];
+    m.end[a] = end[a];
+  }
+  m.feedrate = s.feedrate;
+  m.filament = end[kE] - start[kE];
+  double dx = end[kX] - start[kX], dy = end[kY] - start[kY], dz = end[kZ] - start[kZ];
+  m.z_changed = dz != 0;
+  if (m.kind == MoveKind::Arc) {
+    bool has_ij = line.has('I') || line.has('J');
+    Arc arc = make_arc(start[kX], start[kY], end[kX], end[kY], line.number == 2, has_ij,
+                       line.value_or('I', 0) * scale, line.value_or('J', 0) * scale, line.value_or('R', 0) * scale);
+    m.is_arc_clockwise = line.number == 2;
+    if (arc.valid) {
+      m.xy_length = arc.length_xy();
+      m.length = std::hypot(m.xy_length, dz);
+      return;
+    }
+  }
+  // sqrt is several times cheaper than hypot, which only matters for values
+  // beyond 1e150 (junk input): those take the careful path.
+  m.xy_length = std::sqrt(dx * dx + dy * dy);
+  m.length = dz == 0 ? m.xy_length : std::sqrt(dx * dx + dy * dy + dz * dz);
+  if (!std::isfinite(m.length)) {
+    m.xy_length = std::hypot(dx, dy);
+    m.length = std::hypot(m.xy_length, dz);
+  }
+}
+
+void apply_set_position(MachineState& s, const Line& line) {
+  double scale = s.inches ? kInch : 1.0;
+  for (int a = 0; a < 4; ++a) {
+    const Word* w = line.find(kAxisLetters[a]);
+    if (w == nullptr || !w->has_value) continue;
+    double machine = s.position[a] + s.offset[a];
+    s.position[a] = w->value * scale;
+    s.offset[a] = machine - s.position[a];
+    s.known[a] = true;
+  }
+}
+
+void apply_home(MachineState& s, const Line& line) {
+  bool any = line.has('X') || line.has('Y') || line.has('Z');
+  for (int a = 0; a < 3; ++a) {
+    if (any && !line.has(kAxisLetters[a])) continue;
+    s.position[a] = 0;
+    s.offset[a] = 0;
+    s.known[a] = true;
+  }
+}
+
+void apply_temperature(MachineState& s, const Line& line) {
+  const Word* target = line.find('S');
+  if (line.number == 109 && (target == nullptr || !target->has_value)) target = line.find('R');
+  if (target == nullptr || !target->has_value) return;
+  int tool = static_cast<int>(line.value_or('T', s.tool));
+  if (tool >= 0 && tool < static_cast<int>(s.hotend_target.size()))
+    s.hotend_target[static_cast<std::size_t>(tool)] = target->value;
+}
+
+void apply_m(MachineState& s, const Line& line) {
+  switch (line.number) {
+    case 82: s.relative_e = false; break;
+    case 83: s.relative_e = true; break;
+    case 104: case 109: apply_temperature(s, line); break;
+    case 140: case 190: {
+      const Word* t = line.find('S');
+      if (t == nullptr || !t->has_value) t = line.find('R');
+      if (t != nullptr && t->has_value) s.bed_target = t->value;
+      break;
+    }
+    case 106: s.fan = line.value_or('S', 255); break;
+    case 107: s.fan = 0; break;
+    default: break;
+  }
+}
+
+void track_lift(MachineState& s, Move& m) {
+  if (m.extruding) {
+    s.lifted = false;
+    return;
+  }
+  double z0 = m.start[kZ], z1 = m.end[kZ];
+  if (!s.lifted && z1 > z0) {
+    s.lifted = true;
+    s.lift_base_z = z0;
+    m.z_lift = true;
+  } else if (s.lifted && z1 < z0 && z1 <= s.lift_base_z + 1e-6) {
+    s.lifted = false;
+    m.z_hop_return = true;
+  }
+}
+
+}  // namespace
+
+Move MachineState::apply(const Line& line) {
+  Move m;
+  m.start = position;
+  m.end = position;
+  m.feedrate = feedrate;
+  if (line.kind != CommandKind::Standard) return m;
+  if (line.letter == 'T') {
+    tool = line.number;
+    return m;
+  }
+  if (line.letter == 'M') {
+    apply_m(*this, line);
+    return m;
+  }
+  if (line.letter != 'G' || line.subcode >= 0) return m;
+  switch (line.number) {
+    case 0: case 1: case 2: case 3: {
+      m.kind = line.number <= 1 ? MoveKind::Linear : MoveKind::Arc;
+      if (line.malformed) {
+        // Never guess: a move we cannot read is left out of the state.
+        m.ignored = true;
+        return m;
+      }
+      apply_motion(*this, line, m);
+      filament_total += m.filament;
+      m.extruding = m.filament > 0 && m.xy_length + std::fabs(m.end[kZ] - m.start[kZ]) > 0;
+      m.travel = m.filament <= 0 && m.length > 0;
+      track_lift(*this, m);
+      return m;
+    }
+    case 10: case 11:
+      if (!is_firmware_retraction(line)) return m;
+      uses_firmware_retraction = true;
+      firmware_retracted = line.number == 10;
+      m.kind = line.number == 10 ? MoveKind::FirmwareRetract : MoveKind::FirmwareUnretract;
+      return m;
+    case 20: inches = true; return m;
+    case 21: inches = false; return m;
+    case 28:
+      lifted = false;
+      apply_home(*this, line);
+      m.kind = MoveKind::Home;
+      m.end = position;
+      return m;
+    case 90: relative_xyz = false; relative_e = false; return m;
+    case 91: relative_xyz = true; relative_e = true; return m;
+    case 92:
+      if (line.has('Z')) lifted = false;
+      apply_set_position(*this, line);
+      m.kind = MoveKind::SetPosition;
+      m.end = position;
+      return m;
+    default:
+      return m;
+  }
+}
+
+}  // namespace gcode

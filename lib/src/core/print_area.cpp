@@ -1,0 +1,229 @@
+#include "gcode/core/print_area.hpp"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <vector>
+
+#include "gcode/core/line_reader.hpp"
+#include "gcode/core/number.hpp"
+
+namespace gcode {
+
+namespace {
+
+// The head holds Cura's and Griffin's header; the tail holds PrusaSlicer's
+// config block (about 60 KB; custom G-code in it can make it longer).
+constexpr std::size_t kHeadBytes = 64u << 10;
+constexpr std::size_t kTailBytes = 1u << 20;
+constexpr std::size_t kMaxCuraSettings = 1u << 20;
+// Unset Cura header values come out as +-2.14748e+06 from the bare CLI.
+constexpr double kSane = 1e5;
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+  return s;
+}
+
+bool number_of(std::string_view text, double& v) { return parse_number(trim(text), v) && std::fabs(v) < kSane; }
+
+// "key = value" after the ';', or nothing.
+bool key_value(std::string_view c, std::string_view key, std::string_view& value) {
+  c = trim(c);
+  if (c.size() <= key.size() || c.substr(0, key.size()) != key) return false;
+  std::string_view rest = trim(c.substr(key.size()));
+  if (rest.empty() || rest.front() != '=') return false;
+  value = trim(rest.substr(1));
+  return true;
+}
+
+// "0x0,250x0,250x210,0x210" -> the bounding box of the polygon.
+bool polygon_box(std::string_view text, Box2& box) {
+  bool any = false;
+  while (!text.empty()) {
+    std::size_t comma = text.find(',');
+    std::string_view point = trim(text.substr(0, comma));
+    std::size_t x = point.find('x');
+    double px = 0, py = 0;
+    if (x == std::string_view::npos || !number_of(point.substr(0, x), px) || !number_of(point.substr(x + 1), py))
+      return false;
+    if (!any) {
+      box = Box2{px, py, px, py};
+      any = true;
+    } else {
+      box.min_x = std::min(box.min_x, px);
+      box.min_y = std::min(box.min_y, py);
+      box.max_x = std::max(box.max_x, px);
+      box.max_y = std::max(box.max_y, py);
+    }
+    if (comma == std::string_view::npos) break;
+    text.remove_prefix(comma + 1);
+  }
+  return any && box.max_x > box.min_x && box.max_y > box.min_y;
+}
+
+// Cura's settings are an escaped INI text: "machine_width = 220\\n".
+bool cura_setting(std::string_view all, std::string_view key, double& v) {
+  std::string pattern = std::string(key) + " = ";
+  std::size_t at = all.find(pattern);
+  if (at == std::string_view::npos) return false;
+  std::string_view rest = all.substr(at + pattern.size());
+  std::size_t end = 0;
+  while (end < rest.size() && (std::isdigit(static_cast<unsigned char>(rest[end])) || rest[end] == '.' || rest[end] == '-'))
+    ++end;
+  return end > 0 && number_of(rest.substr(0, end), v);
+}
+
+}  // namespace
+
+void PrintArea::merge(const PrintArea& o) {
+  if (!has_bed && o.has_bed) {
+    has_bed = true;
+    bed = o.bed;
+  }
+  if (!has_max_z && o.has_max_z) {
+    has_max_z = true;
+    max_z = o.max_z;
+  }
+  if (!has_print_box && o.has_print_box) {
+    has_print_box = true;
+    print_box = o.print_box;
+  }
+  if (!has_print_top && o.has_print_top) {
+    has_print_top = true;
+    print_top = o.print_top;
+  }
+}
+
+void PrintAreaScanner::observe(std::string_view text) {
+  std::size_t semi = text.find(';');
+  if (semi == std::string_view::npos) return;
+  observe_comment(text.substr(semi + 1));
+}
+
+void PrintAreaScanner::observe_comment(std::string_view c) {
+  static constexpr std::string_view kCura[6] = {"MINX:", "MINY:", "MINZ:", "MAXX:", "MAXY:", "MAXZ:"};
+  static constexpr std::string_view kGriffin[6] = {"PRINT.SIZE.MIN.X:", "PRINT.SIZE.MIN.Y:", "PRINT.SIZE.MIN.Z:",
+                                                   "PRINT.SIZE.MAX.X:", "PRINT.SIZE.MAX.Y:", "PRINT.SIZE.MAX.Z:"};
+  for (int i = 0; i < 6; ++i) {
+    for (std::string_view key : {kCura[i], kGriffin[i]}) {
+      if (c.size() > key.size() && c.substr(0, key.size()) == key) {
+        double v = 0;
+        if (number_of(c.substr(key.size()), v)) {
+          cura_box_[i] = v;
+          cura_seen_ |= 1u << i;
+        }
+        return;
+      }
+    }
+  }
+  constexpr std::string_view kSetting = "SETTING_3 ";
+  if (c.size() > kSetting.size() && c.substr(0, kSetting.size()) == kSetting) {
+    if (cura_settings_.size() < kMaxCuraSettings) cura_settings_.append(c.substr(kSetting.size()));
+    return;
+  }
+  std::string_view value;
+  Box2 box;
+  double v = 0;
+  if ((key_value(c, "bed_shape", value) || key_value(c, "printable_area", value)) && polygon_box(value, box)) {
+    found_.has_bed = true;
+    found_.bed = box;
+  } else if ((key_value(c, "max_print_height", value) || key_value(c, "printable_height", value)) &&
+             number_of(value, v) && v > 0) {
+    found_.has_max_z = true;
+    found_.max_z = v;
+  }
+}
+
+PrintArea PrintAreaScanner::limits() const {
+  PrintArea l = found_;
+  const double* b = cura_box_;
+  if ((cura_seen_ & 0b011011u) == 0b011011u && b[3] >= b[0] && b[4] >= b[1]) {
+    l.has_print_box = true;
+    l.print_box = Box2{b[0], b[1], b[3], b[4]};
+  }
+  if ((cura_seen_ & 0b100000u) != 0 && b[5] > 0) {
+    l.has_print_top = true;
+    l.print_top = b[5];
+  }
+  if (!cura_settings_.empty()) {
+    double w = 0, d = 0, h = 0;
+    if (!l.has_bed && cura_setting(cura_settings_, "machine_width", w) &&
+        cura_setting(cura_settings_, "machine_depth", d) && w > 0 && d > 0) {
+      l.has_bed = true;
+      bool centred = cura_settings_.find("machine_center_is_zero = True") != std::string::npos;
+      l.bed = centred ? Box2{-w / 2, -d / 2, w / 2, d / 2} : Box2{0, 0, w, d};
+    }
+    if (!l.has_max_z && cura_setting(cura_settings_, "machine_height", h) && h > 0) {
+      l.has_max_z = true;
+      l.max_z = h;
+    }
+  }
+  return l;
+}
+
+namespace {
+
+void scan_lines(std::string_view text, bool skip_first, PrintAreaScanner& scanner) {
+  MemoryLineSplitter split(text);
+  RawLine raw;
+  bool first = true;
+  while (split.next(raw)) {
+    // The tail starts mid-line; its first piece is not a whole line.
+    if (first && skip_first) {
+      first = false;
+      continue;
+    }
+    first = false;
+    scanner.observe(raw.text);
+  }
+}
+
+bool read_at(int fd, std::vector<char>& buffer, std::size_t size, off_t at) {
+  buffer.resize(size);
+  std::size_t done = 0;
+  while (done < size) {
+    ssize_t n = ::pread(fd, buffer.data() + done, size - done, at + static_cast<off_t>(done));
+    if (n < 0) return false;
+    if (n == 0) break;
+    done += static_cast<std::size_t>(n);
+  }
+  buffer.resize(done);
+  return true;
+}
+
+}  // namespace
+
+bool scan_file_limits(int fd, PrintArea& limits) {
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) return false;
+  std::size_t size = static_cast<std::size_t>(st.st_size);
+  PrintAreaScanner scanner;
+  std::vector<char> buffer;
+  if (size <= kHeadBytes + kTailBytes) {
+    if (!read_at(fd, buffer, size, 0)) return false;
+    scan_lines(std::string_view(buffer.data(), buffer.size()), false, scanner);
+  } else {
+    if (!read_at(fd, buffer, kHeadBytes, 0)) return false;
+    // Drop the last, possibly cut, line of the head.
+    std::string_view head(buffer.data(), buffer.size());
+    head = head.substr(0, head.rfind('\n') + 1);
+    scan_lines(head, false, scanner);
+    if (!read_at(fd, buffer, kTailBytes, static_cast<off_t>(size - kTailBytes))) return false;
+    scan_lines(std::string_view(buffer.data(), buffer.size()), true, scanner);
+  }
+  limits = scanner.limits();
+  return true;
+}
+
+PrintArea scan_text_limits(std::string_view text) {
+  PrintAreaScanner scanner;
+  scan_lines(text, false, scanner);
+  return scanner.limits();
+}
+
+}  // namespace gcode

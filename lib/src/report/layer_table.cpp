@@ -1,0 +1,77 @@
+#include "gcode/report/layer_table.hpp"
+
+#include <algorithm>
+
+namespace gcode {
+
+void Bounds::add(double x, double y, double z) {
+  const double p[3] = {x, y, z};
+  for (int i = 0; i < 3; ++i) {
+    min[static_cast<std::size_t>(i)] = std::min(min[static_cast<std::size_t>(i)], p[i]);
+    max[static_cast<std::size_t>(i)] = std::max(max[static_cast<std::size_t>(i)], p[i]);
+  }
+}
+
+LayerTable::LayerTable() { start_.region = Region::StartCode; }
+
+void LayerTable::on_layer(const LayerInfo& info) {
+  LayerRow row;
+  row.region = Region::Layer;
+  row.info = info;
+  layers_.push_back(row);
+}
+
+void LayerTable::on_end_code() {
+  has_end_ = true;
+  end_.region = Region::EndCode;
+}
+
+LayerRow& LayerTable::current() {
+  if (has_end_) return end_;
+  if (layers_.empty()) return start_;
+  return layers_.back();
+}
+
+void LayerTable::on_line(const TrackedLine& t) {
+  LayerRow& row = current();
+  if (row.first_line == 0) {
+    row.first_line = t.raw.number;
+    row.byte_begin = t.raw.offset;
+  }
+  row.last_line = t.raw.number;
+  row.byte_end = t.raw.offset + t.raw.size();
+  ++total_lines_;
+  total_bytes_ = row.byte_end;
+  const Move& m = t.move;
+  if (m.kind == MoveKind::Linear || m.kind == MoveKind::Arc) {
+    ++row.moves;
+    row.filament += m.filament;
+    total_filament_ += m.filament;
+    if (m.extruding) {
+      row.extruded += m.filament;
+      row.path += m.length;
+      if (t.region == Region::Layer) {
+        bounds_.add(m.start[kX], m.start[kY], m.start[kZ]);
+        bounds_.add(m.end[kX], m.end[kY], m.end[kZ]);
+      }
+      if (t.feature >= 0 && std::find(row.features.begin(), row.features.end(), t.feature) == row.features.end())
+        row.features.push_back(t.feature);
+    } else if (m.travel) {
+      row.travel += m.length;
+    }
+  }
+}
+
+double LayerTable::layers_extruded() const {
+  double sum = 0;
+  for (const LayerRow& r : layers_) sum += r.extruded;
+  return sum;
+}
+
+double filament_mass_g(double length_mm, double diameter_mm, double density_g_cm3) {
+  constexpr double kPi = 3.141592653589793;
+  double area_mm2 = kPi * diameter_mm * diameter_mm / 4;
+  return length_mm * area_mm2 / 1000.0 * density_g_cm3;
+}
+
+}  // namespace gcode
