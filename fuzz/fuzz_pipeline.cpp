@@ -88,7 +88,7 @@ class EchoSink : public gcode::LayerSink {
       // Line reads numbers in its own fast pass; it must agree with
       // parse_number bit for bit.
       double v = 0;
-      if (w.has_value) check(gcode::parse_number(w.raw, v) && v == w.value, "word value differs from parse_number");
+      if (w.has_value) check(gcode::parse_number(w.raw, v) && v == w.value(), "word value differs from parse_number");
     }
     (void)t.line.comment_text();
     (void)t.line.code();

@@ -79,7 +79,8 @@ inline double distance_to_segment(const gcode::Vec4& p, const gcode::Vec4& a, co
 
 inline bool same_position(const gcode::MachineState& a, const gcode::MachineState& b, double tol) {
   for (int i = 0; i < 4; ++i)
-    if (std::fabs(a.position[i] - b.position[i]) > tol || std::fabs(a.offset[i] - b.offset[i]) > tol) return false;
+    if (std::fabs(a.position[i] - b.position[i]) > tol || std::fabs((a.offset[static_cast<std::size_t>(i)] - b.offset[static_cast<std::size_t>(i)]).to_double()) > tol)
+      return false;
   return true;
 }
 

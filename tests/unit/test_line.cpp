@@ -11,10 +11,10 @@ TEST_CASE("a plain move", "[line]") {
   CHECK(l.is_g(1));
   CHECK(l.is_move());
   REQUIRE(l.word_count() == 4);
-  CHECK(l.find('X')->value == 10.5);
-  CHECK(l.find('Y')->value == -3);
+  CHECK(l.find('X')->value() == 10.5);
+  CHECK(l.find('Y')->value() == -3);
   CHECK(l.find('E')->raw == ".12345");
-  CHECK(l.find('F')->value == 1800);
+  CHECK(l.find('F')->value() == 1800);
   CHECK(l.comment == "; perimeter");
   CHECK(l.comment_text() == "perimeter");
   CHECK(l.code() == "G1 X10.5 Y-3 E.12345 F1800");
@@ -24,15 +24,15 @@ TEST_CASE("a plain move", "[line]") {
 TEST_CASE("what Marlin accepts: packed, lower case, +, spaces, missing zero", "[line]") {
   Line l = Line::parse("g1x10Y5E.5");
   CHECK(l.is_g(1));
-  CHECK(l.find('X')->value == 10);
-  CHECK(l.find('Y')->value == 5);
-  CHECK(l.find('E')->value == 0.5);
+  CHECK(l.find('X')->value() == 10);
+  CHECK(l.find('Y')->value() == 5);
+  CHECK(l.find('E')->value() == 0.5);
   Line s = Line::parse("G1 X +10 Y -2");
-  CHECK(s.find('X')->value == 10);
-  CHECK(s.find('Y')->value == -2);
+  CHECK(s.find('X')->value() == 10);
+  CHECK(s.find('Y')->value() == -2);
   Line e = Line::parse("G1X5E2");  // upper-case E is a word, not an exponent
-  CHECK(e.find('X')->value == 5);
-  CHECK(e.find('E')->value == 2);
+  CHECK(e.find('X')->value() == 5);
+  CHECK(e.find('E')->value() == 2);
 }
 
 TEST_CASE("line numbers, checksums and subcodes", "[line]") {
@@ -41,7 +41,7 @@ TEST_CASE("line numbers, checksums and subcodes", "[line]") {
   CHECK(l.line_number == 123);
   CHECK(l.has_checksum);
   CHECK(l.checksum == 71);
-  CHECK(l.find('X')->value == 1);
+  CHECK(l.find('X')->value() == 1);
   Line s = Line::parse("G29.1 Z0.2");
   CHECK(s.number == 29);
   CHECK(s.subcode == 1);
@@ -69,7 +69,7 @@ TEST_CASE("host commands, macros, comments", "[line]") {
   CHECK(c.kind == CommandKind::None);
   CHECK(c.comment_text() == "LAYER:3");
   Line p = Line::parse("G1 X1 (inline) Y2");
-  CHECK(p.find('Y')->value == 2);
+  CHECK(p.find('Y')->value() == 2);
   CHECK(p.comment == "(inline)");
   CHECK(Line::parse("").is_blank());
   CHECK(Line::parse("   \t").is_blank());

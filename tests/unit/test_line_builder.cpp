@@ -10,7 +10,7 @@ TEST_CASE("LineBuilder writes shortest numbers and keeps the comment", "[line_bu
   b.start("G92").raw_word('E', "-.8");
   CHECK(b.view() == "G92 E-.8");
   gcode::Line back = gcode::Line::parse(b.view());
-  CHECK(back.find('E')->value == -0.8);
+  CHECK(back.find('E')->value() == -0.8);
 }
 
 TEST_CASE("Precision keeps at least the input's decimals", "[line_builder]") {

@@ -106,7 +106,7 @@ TEST_CASE("relative E pieces sum exactly at the written precision", "[subdivide]
     gcode::Line p = gcode::Line::parse(text);
     REQUIRE(p.has('E'));
     CHECK(gcode::decimals_of(p.find('E')->raw) <= 5);
-    units += std::lround(p.find('E')->value * 1e5);
+    units += std::lround(p.find('E')->value() * 1e5);
   }
   CHECK(units == 7);
   // Retraction moves (negative E while moving: a wipe) too.

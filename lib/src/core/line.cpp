@@ -34,15 +34,13 @@ std::size_t number_length(const char* p, const char* end) {
   return static_cast<std::size_t>(q - p);
 }
 
-constexpr double kPow10[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
-
-// Scans the number text starting at p (the extent number_length gives) and
-// reads its value on the way: one pass instead of two for the plain decimals
-// slicers write. Anything else (an exponent, a second point, 16 or more
-// digits) goes to parse_number, so values are the same bit for bit.
-// Returns false when the text is no finite number. The fast path needs no
-// finiteness test, which keeps the division off the critical path.
-bool scan_number(const char* p, const char* end, std::string_view& raw, double& value, int& decimals) {
+// Scans the number text starting at p (the extent number_length gives) into
+// `w`: its digits as an integer and its count of decimals, one pass and no
+// floating point for the plain decimals slicers write. Anything else (an
+// exponent, 19 or more digits) is checked with parse_number and marked not
+// plain, so its value is read from the text when asked for.
+// Returns false when the text is no finite number ("-", "1.2.3", "1e999").
+bool scan_number(const char* p, const char* end, Word& w) {
   const char* q = p;
   bool negative = false;
   if (q != end && (*q == '-' || *q == '+')) {
@@ -63,23 +61,27 @@ bool scan_number(const char* p, const char* end, std::string_view& raw, double& 
       mantissa = mantissa * 10 + d;
     fraction_digits = static_cast<int>(q - frac_start);
     digits += fraction_digits;
-    decimals = fraction_digits;
     // A second point ("1.2.3"): the text runs on like number_length says.
     while (q != end && (*q == '.' || (*q >= '0' && *q <= '9'))) {
       points += *q == '.';
       ++q;
     }
   }
+  w.decimals = static_cast<std::uint8_t>(fraction_digits > 255 ? 255 : fraction_digits);
   if (q != end && *q == 'e') {
-    std::size_t len = number_length(p, end);
-    raw = std::string_view(p, len);
-    return parse_number(raw, value) && value - value == 0;
+    w.raw = std::string_view(p, number_length(p, end));
+    w.plain = false;
+    double v = 0;
+    return parse_number(w.raw, v) && v - v == 0;
   }
-  raw = std::string_view(p, static_cast<std::size_t>(q - p));
+  w.raw = std::string_view(p, static_cast<std::size_t>(q - p));
   if (digits == 0 || points > 1) return false;
-  if (digits > 15) return parse_number(raw, value) && value - value == 0;
-  double v = static_cast<double>(mantissa) / kPow10[fraction_digits];
-  value = negative ? -v : v;
+  if (digits > 18) {
+    w.plain = false;
+    double v = 0;
+    return parse_number(w.raw, v) && v - v == 0;
+  }
+  w.mantissa = negative ? -static_cast<std::int64_t>(mantissa) : static_cast<std::int64_t>(mantissa);
   return true;
 }
 
@@ -90,6 +92,14 @@ std::string_view trim(std::string_view s) {
 }
 
 }  // namespace
+
+double Word::value_slow() const {
+  double v = 0;
+  parse_number(raw, v);
+  return v;
+}
+
+Fixed Word::fixed_slow() const { return Fixed::from_double(value_slow()); }
 
 bool takes_string_argument(char letter, int number) {
   if (letter != 'M') return false;
@@ -255,14 +265,10 @@ Line Line::parse(std::string_view text) {
     const char* value_start = p;
     while (value_start != code_end && (*value_start == ' ' || *value_start == '\t')) ++value_start;
     if (value_start != code_end && starts_number(*value_start)) {
-      double v = 0;
-      int decimals = 0;
-      bool ok = scan_number(value_start, code_end, w.raw, v, decimals);
-      w.decimals = static_cast<std::uint8_t>(decimals > 255 ? 255 : decimals);
+      bool ok = scan_number(value_start, code_end, w);
       p = value_start + w.raw.size();
       if (ok) {
         w.has_value = true;
-        w.value = v;
       } else {
         line.malformed = true;  // "X-", "X1e309", "X1.2.3"
       }

@@ -21,8 +21,20 @@ bool is_firmware_retraction(const Line& line) {
   return true;
 }
 
+// A word's value in millimetres as an exact decimal (inches converted).
+Fixed word_mm(const Word& w, bool inches) {
+  Fixed v = w.fixed();
+  if (!inches) return v;
+  // 25.4 = 254 / 10: exact for inch values with up to eight decimals.
+  std::int64_t u = v.units();
+  if (u > Fixed::kMax / 26) return Fixed::from_units(Fixed::kMax);
+  if (u < -Fixed::kMax / 26) return Fixed::from_units(-Fixed::kMax);
+  std::int64_t t = u * 254;
+  return Fixed::from_units(t >= 0 ? (t + 5) / 10 : (t - 5) / 10);
+}
+
 void apply_motion(MachineState& s, const Line& line, Move& m) {
-  double scale = s.inches ? kInch : 1.0;
+  const bool inches = s.inches;
   // One pass over the words instead of a find() per letter (this runs for
   // most lines of a file); the first word of a letter counts, as with find().
   const Word* axis[4] = {};
@@ -37,33 +49,49 @@ void apply_motion(MachineState& s, const Line& line, Move& m) {
       default: break;
     }
   }
-  if (f != nullptr && f->has_value && f->value > 0) s.feedrate = f->value * scale;
+  if (f != nullptr && f->has_value) {
+    double v = f->value();
+    if (v > 0) s.feedrate = inches ? v * kInch : v;
+  }
   // The new position is worked out in scalars and only then stored: reading
   // s.position back as a whole right after storing single axes defeats the
   // CPU's store forwarding, which cost more than the rest of this function.
   const double start[4] = {s.position[kX], s.position[kY], s.position[kZ], s.position[kE]};
+  const Fixed e0 = s.exact[kE];
   double end[4] = {start[0], start[1], start[2], start[3]};
   for (int a = 0; a < 4; ++a) {
     const Word* w = axis[a];
     if (w == nullptr || !w->has_value) continue;
-    double v = w->value * scale;
+    auto i = static_cast<std::size_t>(a);
     bool relative = a == kE ? s.relative_e : s.relative_xyz;
-    if (relative) {
-      end[a] += v;
-    } else {
-      end[a] = v;
-      s.known[a] = true;
+    if (!inches && w->plain && w->decimals <= Fixed::kDecimals && !relative) {
+      // The common case: an absolute plain decimal in mm. Its double is the
+      // word's own value, no division by 10^9 needed.
+      s.exact[i] = w->fixed();
+      end[a] = w->value();
+      s.known[i] = true;
+      continue;
     }
+    Fixed v = word_mm(*w, inches);
+    if (relative) {
+      s.exact[i] += v;
+    } else {
+      s.exact[i] = v;
+      s.known[i] = true;
+    }
+    end[a] = s.exact[i].to_double();
   }
   for (int a = 0; a < 4; ++a) {
     s.position[a] = end[a];
     m.end[a] = end[a];
   }
   m.feedrate = s.feedrate;
-  m.filament = end[kE] - start[kE];
+  // The exact difference: 5.0348 after 4.9 is 0.1348, not 0.13480000000000025.
+  m.filament = axis[kE] != nullptr ? (s.exact[kE] - e0).to_double() : 0.0;
   double dx = end[kX] - start[kX], dy = end[kY] - start[kY], dz = end[kZ] - start[kZ];
   m.z_changed = dz != 0;
   if (m.kind == MoveKind::Arc) {
+    double scale = inches ? kInch : 1.0;
     bool has_ij = line.has('I') || line.has('J');
     Arc arc = make_arc(start[kX], start[kY], end[kX], end[kY], line.number == 2, has_ij,
                        line.value_or('I', 0) * scale, line.value_or('J', 0) * scale, line.value_or('R', 0) * scale);
@@ -85,14 +113,14 @@ void apply_motion(MachineState& s, const Line& line, Move& m) {
 }
 
 void apply_set_position(MachineState& s, const Line& line) {
-  double scale = s.inches ? kInch : 1.0;
   for (int a = 0; a < 4; ++a) {
     const Word* w = line.find(kAxisLetters[a]);
     if (w == nullptr || !w->has_value) continue;
-    double machine = s.position[a] + s.offset[a];
-    s.position[a] = w->value * scale;
-    s.offset[a] = machine - s.position[a];
-    s.known[a] = true;
+    auto i = static_cast<std::size_t>(a);
+    Fixed machine = s.exact[i] + s.offset[i];
+    s.set(a, word_mm(*w, s.inches));
+    s.offset[i] = machine - s.exact[i];
+    s.known[i] = true;
   }
 }
 
@@ -100,9 +128,9 @@ void apply_home(MachineState& s, const Line& line) {
   bool any = line.has('X') || line.has('Y') || line.has('Z');
   for (int a = 0; a < 3; ++a) {
     if (any && !line.has(kAxisLetters[a])) continue;
-    s.position[a] = 0;
-    s.offset[a] = 0;
-    s.known[a] = true;
+    s.set(a, Fixed());
+    s.offset[static_cast<std::size_t>(a)] = Fixed();
+    s.known[static_cast<std::size_t>(a)] = true;
   }
 }
 
@@ -112,7 +140,7 @@ void apply_temperature(MachineState& s, const Line& line) {
   if (target == nullptr || !target->has_value) return;
   int tool = static_cast<int>(line.value_or('T', s.tool));
   if (tool >= 0 && tool < static_cast<int>(s.hotend_target.size()))
-    s.hotend_target[static_cast<std::size_t>(tool)] = target->value;
+    s.hotend_target[static_cast<std::size_t>(tool)] = target->value();
 }
 
 void apply_m(MachineState& s, const Line& line) {
@@ -123,7 +151,7 @@ void apply_m(MachineState& s, const Line& line) {
     case 140: case 190: {
       const Word* t = line.find('S');
       if (t == nullptr || !t->has_value) t = line.find('R');
-      if (t != nullptr && t->has_value) s.bed_target = t->value;
+      if (t != nullptr && t->has_value) s.bed_target = t->value();
       break;
     }
     case 106: s.fan = line.value_or('S', 255); break;
@@ -205,6 +233,18 @@ Move MachineState::apply(const Line& line) {
     default:
       return m;
   }
+}
+
+}  // namespace gcode
+
+namespace gcode {
+
+bool same_machine(const MachineState& a, const MachineState& b) {
+  return a.exact == b.exact && a.offset == b.offset && a.known == b.known && a.feedrate == b.feedrate &&
+         a.relative_xyz == b.relative_xyz && a.relative_e == b.relative_e && a.inches == b.inches &&
+         a.firmware_retracted == b.firmware_retracted && a.uses_firmware_retraction == b.uses_firmware_retraction &&
+         a.tool == b.tool && a.hotend_target == b.hotend_target && a.bed_target == b.bed_target && a.fan == b.fan &&
+         a.lifted == b.lifted && a.lift_base_z == b.lift_base_z;
 }
 
 }  // namespace gcode

@@ -53,7 +53,7 @@ void Estimator::add(const Line& line, const Move& move) {
     if (options_.file_limits && limits_.apply(line)) return;
     switch (line.number) {
       case 220:  // feed rate percentage
-        if (const Word* s = line.find('S'); s != nullptr && s->has_value && s->value > 0) feed_percent_ = s->value;
+        if (const Word* s = line.find('S'); s != nullptr && s->has_value && s->value() > 0) feed_percent_ = s->value();
         return;
       case 104: case 109: heat_wait(line, false); return;
       case 140: case 190: case 191: heat_wait(line, true); return;
@@ -284,7 +284,7 @@ void Estimator::heat_wait(const Line& line, bool bed) {
   const Word* r = line.find('R');
   const Word* target_word = (s != nullptr && s->has_value) ? s : ((r != nullptr && r->has_value) ? r : nullptr);
   if (target_word == nullptr) return;
-  double target = target_word->value;
+  double target = target_word->value();
   double& temp = bed ? bed_temp_ : hotend_temp_;
   double& old_target = bed ? bed_target_ : hotend_target_;
   double& since = bed ? bed_since_ : hotend_since_;

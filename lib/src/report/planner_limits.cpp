@@ -50,7 +50,7 @@ bool PlannerLimits::apply(const Line& line) {
   if (line.kind != CommandKind::Standard || line.letter != 'M') return false;
   auto positive = [&](char letter, double& target, double scale = 1) {
     const Word* w = line.find(letter);
-    if (w != nullptr && w->has_value && w->value > 0) target = w->value * scale;
+    if (w != nullptr && w->has_value && w->value() > 0) target = w->value() * scale;
   };
   switch (line.number) {
     case 201:  // max acceleration per axis, mm/s^2 (both firmwares)
@@ -85,18 +85,18 @@ bool PlannerLimits::apply(const Line& line) {
       bool classic = false;
       for (int a = 0; a < 4; ++a) {
         const Word* w = line.find(kAxisLetters[a]);
-        if (w != nullptr && w->has_value && w->value >= 0) {
-          jerk[static_cast<std::size_t>(a)] = w->value;
+        if (w != nullptr && w->has_value && w->value() >= 0) {
+          jerk[static_cast<std::size_t>(a)] = w->value();
           classic = true;
         }
       }
-      if (const Word* j = line.find('J'); j != nullptr && j->has_value && j->value >= 0) {
-        junction_deviation = j->value;
+      if (const Word* j = line.find('J'); j != nullptr && j->has_value && j->value() >= 0) {
+        junction_deviation = j->value();
       } else if (classic) {
         junction_deviation = 0;
       }
-      if (const Word* w = line.find('S'); w != nullptr && w->has_value && w->value >= 0) min_feedrate = w->value;
-      if (const Word* w = line.find('T'); w != nullptr && w->has_value && w->value >= 0) min_travel_feedrate = w->value;
+      if (const Word* w = line.find('S'); w != nullptr && w->has_value && w->value() >= 0) min_feedrate = w->value();
+      if (const Word* w = line.find('T'); w != nullptr && w->has_value && w->value() >= 0) min_travel_feedrate = w->value();
       return true;
     }
     case 207:  // firmware retraction: S length, F speed (mm/min)
@@ -104,7 +104,7 @@ bool PlannerLimits::apply(const Line& line) {
       positive('F', fw_retract_speed, 1.0 / 60);
       return true;
     case 208:  // firmware recover: S extra length, F speed (mm/min)
-      if (const Word* w = line.find('S'); w != nullptr && w->has_value) fw_unretract_extra = w->value;
+      if (const Word* w = line.find('S'); w != nullptr && w->has_value) fw_unretract_extra = w->value();
       positive('F', fw_unretract_speed, 1.0 / 60);
       return true;
     case 566:  // RepRapFirmware's jerk: allowed instantaneous speed change, mm/min

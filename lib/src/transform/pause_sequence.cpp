@@ -13,30 +13,16 @@ namespace gcode {
 
 namespace {
 
-// The shortest text, from `decimals` up, that reads back as exactly `value`:
-// the resume must land on the very coordinate the file is at, not one
-// rounded to the slicer's decimals (for a value parsed from the file the
-// slicer's decimals are already exact).
-std::string exact_number(double value, int decimals) {
+// A value the block computes (E - 2, Z + lift, a park position), written
+// with at most the input's decimals for its letter: 5.0348 - 2 is 3.0348.
+std::string text_of(Fixed value, int decimals) {
   char buffer[kMaxNumberChars];
-  for (int d = decimals; d <= 9; ++d) {
-    std::size_t n = format_number(value, d, buffer);
-    double back = 0;
-    if (parse_number(std::string_view(buffer, n), back) && back == value) return std::string(buffer, n);
-  }
-  // A sum of relative moves (0.1 + 0.2) needs all its digits: the shortest
-  // fixed notation that reads back exactly (never an exponent).
-  char wide[400];
-  auto res = std::to_chars(wide, wide + sizeof wide, value, std::chars_format::fixed);
-  if (res.ec == std::errc()) return std::string(wide, res.ptr);
-  return std::string(buffer, format_number(value, 9, buffer));
+  return std::string(buffer, value.format(decimals, buffer));
 }
 
-double parsed(const std::string& text) {
-  double v = 0;
-  parse_number(text, v);
-  return v;
-}
+// A position the file is at, written back exactly (its decimals are the
+// file's own, so nothing is rounded).
+std::string exact_text(Fixed value) { return text_of(value, Fixed::kDecimals); }
 
 bool iequals(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;
@@ -56,43 +42,45 @@ void add_text_lines(std::vector<std::string>& out, std::string_view text) {
   }
 }
 
-// Writes the E moves of a block in the file's own E mode, keeping the E
-// coordinate the firmware will hold (the value each written text reads as).
+// Writes the E moves of a block in the file's own E mode, at the file's E
+// precision, keeping the E coordinate the firmware will hold exactly.
 class Extruder {
  public:
-  Extruder(bool relative, double start) : relative_(relative), e_(start) {}
+  Extruder(bool relative, Fixed start, const Precision& precision)
+      : relative_(relative), e_(start), decimals_(precision.of('E')), feed_decimals_(precision.of('F')) {}
 
-  void move(std::vector<std::string>& out, double amount, double speed_mm_s) {
-    if (amount == 0) return;
+  void move(std::vector<std::string>& out, double amount_mm, double speed_mm_s) {
+    Fixed amount = Fixed::from_double(amount_mm).rounded(decimals_);
+    if (amount.is_zero()) return;
     // Chunks keep each E move under the firmware's lengthy-extrude guard;
     // whole 150 mm pieces then the rest, so every piece is a short decimal.
-    double left = amount;
-    while (left != 0) {
-      double piece = std::fabs(left) > kMaxExtrudeChunk ? std::copysign(kMaxExtrudeChunk, left) : left;
-      left = std::fabs(left) > kMaxExtrudeChunk ? left - piece : 0;
+    const Fixed chunk = Fixed::from_int(static_cast<std::int64_t>(kMaxExtrudeChunk));
+    Fixed left = amount;
+    while (!left.is_zero()) {
+      Fixed piece = left > chunk ? chunk : (left < -chunk ? -chunk : left);
+      left -= piece;
       LineBuilder b;
       b.start("G1");
       if (relative_) {
-        std::string t = exact_number(piece, 5);
-        b.text(" E").text(t);
-        net_ += parsed(t);
+        b.text(" E").text(text_of(piece, decimals_));
       } else {
-        std::string t = exact_number(e_ + piece, 5);
-        double next = parsed(t);
-        net_ += next - e_;
-        e_ = next;
-        b.text(" E").text(t);
+        e_ += piece;
+        b.text(" E").text(text_of(e_, decimals_));
       }
-      b.word('F', speed_mm_s * 60, 2);
+      net_ += piece;
+      b.word('F', speed_mm_s * 60, feed_decimals_);
       out.emplace_back(b.view());
     }
   }
-  double net() const { return net_; }
+  double net() const { return net_.to_double(); }
+  bool pushed() const { return !net_.is_zero(); }
 
  private:
   bool relative_;
-  double e_;
-  double net_ = 0;
+  Fixed e_;
+  int decimals_;
+  int feed_decimals_;
+  Fixed net_;
 };
 
 struct Heater {
@@ -120,7 +108,7 @@ std::string temperature_line(const char* command, const Heater& h, bool name_too
   LineBuilder b;
   b.start(command);
   if (name_tool) b.word('T', h.tool, 0);
-  b.word(letter, t, 2);
+  b.word(letter, t, 1);
   return std::string(b.view());
 }
 
@@ -180,9 +168,12 @@ PauseBlock build_pause(const PausePoint& point, const PauseConfig& c) {
   PauseBlock block;
   auto& p = block.pause;
   auto& r = block.resume;
-  const double x0 = s.position[kX], y0 = s.position[kY], z0 = s.position[kZ];
+  const Precision defaults;
+  const Precision& precision = point.precision != nullptr ? *point.precision : defaults;
+  const Fixed z0 = s.at(kZ);
   const std::string e_mode = s.relative_e ? "M83" : "M82";
-  Extruder e(s.relative_e, s.position[kE]);
+  Extruder e(s.relative_e, s.at(kE), precision);
+  const int zd = precision.of('Z'), fd = precision.of('F');
 
   // The block moves in absolute XYZ. On Marlin G90 also makes E absolute, so
   // the file's E mode is set again right after it.
@@ -209,24 +200,32 @@ PauseBlock build_pause(const PausePoint& point, const PauseConfig& c) {
   }
 
   // Lift above everything printed so far, never down, never past the top.
-  double base = std::max(z0, point.top_z);
-  double safe = base + c.lift;
-  if (c.max_z > 0) safe = std::min(safe, c.max_z);
+  // Heights the block makes up are rounded to the file's Z decimals; the
+  // return goes to the file's own Z exactly.
+  Fixed base = std::max(z0, Fixed::from_double(point.top_z));
+  Fixed safe = (base + Fixed::from_double(c.lift)).rounded(zd);
+  if (c.max_z > 0) safe = std::min(safe, Fixed::from_double(c.max_z).rounded(zd));
   safe = std::max(safe, z0);
-  double park_z = safe;
-  if (c.min_park_z > park_z) park_z = c.max_z > 0 ? std::min(c.min_park_z, c.max_z) : c.min_park_z;
+  Fixed park_z = safe;
+  if (c.min_park_z > 0 && Fixed::from_double(c.min_park_z) > park_z)
+    park_z = Fixed::from_double(c.max_z > 0 ? std::min(c.min_park_z, c.max_z) : c.min_park_z).rounded(zd);
   park_z = std::max(park_z, safe);
-  block.safe_z = safe;
-  block.park_z = park_z;
+  block.safe_z = safe.to_double();
+  block.park_z = park_z.to_double();
   const double zf = c.z_speed * 60, xyf = c.travel_speed * 60;
   if (park_z > z0) {
     LineBuilder b;
-    b.start("G1").text(" Z").text(exact_number(park_z, 3)).word('F', zf, 2);
+    b.start("G1").text(" Z").text(exact_text(park_z)).word('F', zf, fd);
     p.emplace_back(b.view());
   }
   {
     LineBuilder b;
-    b.start("G1").text(" X").text(exact_number(c.park_x, 3)).text(" Y").text(exact_number(c.park_y, 3)).word('F', xyf, 2);
+    b.start("G1")
+        .text(" X")
+        .text(text_of(Fixed::from_double(c.park_x), precision.of('X')))
+        .text(" Y")
+        .text(text_of(Fixed::from_double(c.park_y), precision.of('Y')))
+        .word('F', xyf, fd);
     p.emplace_back(b.view());
   }
   if (c.wait_for_moves) p.emplace_back("M400");
@@ -301,17 +300,17 @@ PauseBlock build_pause(const PausePoint& point, const PauseConfig& c) {
   }
   if (park_z > safe) {
     LineBuilder b;
-    b.start("G1").text(" Z").text(exact_number(safe, 3)).word('F', zf, 2);
+    b.start("G1").text(" Z").text(exact_text(safe)).word('F', zf, fd);
     r.emplace_back(b.view());
   }
   {
     LineBuilder b;
-    b.start("G1").text(" X").text(exact_number(x0, 3)).text(" Y").text(exact_number(y0, 3)).word('F', xyf, 2);
+    b.start("G1").text(" X").text(exact_text(s.at(kX))).text(" Y").text(exact_text(s.at(kY))).word('F', xyf, fd);
     r.emplace_back(b.view());
   }
   if (safe != z0) {
     LineBuilder b;
-    b.start("G1").text(" Z").text(exact_number(z0, 3)).word('F', zf, 2);
+    b.start("G1").text(" Z").text(exact_text(z0)).word('F', zf, fd);
     r.emplace_back(b.view());
   }
   e.move(r, we_e, c.unretract_speed);
@@ -322,8 +321,8 @@ PauseBlock build_pause(const PausePoint& point, const PauseConfig& c) {
   // Absolute E: the file's next E word is a coordinate. Relative E after an
   // unload/purge: a later switch to M82 (Cura appends one to its end code)
   // would otherwise start from a shifted coordinate.
-  if (!s.relative_e || e.net() != 0) r.push_back("G92 E" + exact_number(s.position[kE], 5));
-  if (s.feedrate > 0) r.push_back("G1 F" + exact_number(s.feedrate, 0));
+  if (!s.relative_e || e.pushed()) r.push_back("G92 E" + exact_text(s.at(kE)));
+  if (s.feedrate > 0) r.push_back("G1 F" + exact_text(Fixed::from_double(s.feedrate)));
   block.net_filament = e.net();
   return block;
 }

@@ -10,14 +10,41 @@
 #include <cstdint>
 #include <string_view>
 
+#include "gcode/core/fixed.hpp"
+
 namespace gcode {
 
+namespace detail {
+inline constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                    1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+inline constexpr std::int64_t kExactDouble = std::int64_t{1} << 53;
+}  // namespace detail
+
+// One letter and its number. The number is kept as written: its digits as an
+// integer and its count of decimals, so reading it needs no floating point
+// and its exact decimal value (fixed()) is at hand for arithmetic that must
+// not drift. value() gives the double for geometry.
 struct Word {
-  char letter = 0;          // always upper case
-  bool has_value = false;   // false for "G28 X" style flags
+  char letter = 0;            // always upper case
+  bool has_value = false;     // false for "G28 X" style flags
+  bool plain = true;          // a plain decimal of at most 18 digits: mantissa holds it
   std::uint8_t decimals = 0;  // digits after the point as written ("-.80" -> 2)
-  double value = 0;         // in the units written (no inch conversion)
-  std::string_view raw;     // the value as written, e.g. "-.8"
+  std::int64_t mantissa = 0;  // the digits, signed: "-.80" -> -80 (with decimals 2)
+  std::string_view raw;       // the value as written, e.g. "-.8"
+
+  // In the units written (no inch conversion); bit for bit what parsing the
+  // text gives.
+  double value() const {
+    if (plain && mantissa < detail::kExactDouble && mantissa > -detail::kExactDouble)
+      return static_cast<double>(mantissa) / detail::kPow10[decimals];
+    return value_slow();
+  }
+  // The exact decimal (rounded only beyond nine decimals).
+  Fixed fixed() const { return plain ? Fixed::from_decimal(mantissa, decimals) : fixed_slow(); }
+
+ private:
+  double value_slow() const;
+  Fixed fixed_slow() const;
 };
 
 enum class CommandKind : std::uint8_t {
@@ -64,7 +91,7 @@ class Line {
   // The value of a word that has one, else `fallback`.
   double value_or(char upper, double fallback) const {
     const Word* w = find(upper);
-    return (w != nullptr && w->has_value) ? w->value : fallback;
+    return (w != nullptr && w->has_value) ? w->value() : fallback;
   }
 
   bool is(char l, int n) const { return kind == CommandKind::Standard && letter == l && number == n; }

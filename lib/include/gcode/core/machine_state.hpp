@@ -5,9 +5,15 @@
 // an absolute X word means now); `offset` holds what G92 shifted, so
 // machine position = position + offset. Filament is counted separately so a
 // G92 E0 or a switch between M82 and M83 never changes how much was extruded.
+//
+// Positions are exact decimals (fixed.hpp): relative moves add up without
+// drift, and a block that returns to a position or restores E writes the
+// decimal the file is at. `position` holds the same values as doubles for
+// geometry; MachineState::apply keeps the two equal.
 #include <array>
 #include <cstdint>
 
+#include "gcode/core/fixed.hpp"
 #include "gcode/core/line.hpp"
 
 namespace gcode {
@@ -56,8 +62,9 @@ struct Move {
 };
 
 struct MachineState {
-  Vec4 position;              // file coordinates, mm
-  Vec4 offset;                // G92 shift: machine = position + offset
+  Vec4 position;              // file coordinates, mm (exact[a].to_double())
+  std::array<Fixed, 4> exact;   // file coordinates, mm, as exact decimals
+  std::array<Fixed, 4> offset;  // G92 shift: machine = position + offset
   std::array<bool, 4> known{};  // whether each axis position is known (homed or set)
   double feedrate = 0;        // mm/min, modal F
   bool relative_xyz = false;  // G91
@@ -77,7 +84,17 @@ struct MachineState {
   // modes (G90, M83, ...) and return a Move of kind None.
   Move apply(const Line& line);
 
-  double machine(int axis) const { return position[axis] + offset[axis]; }
+  double machine(int axis) const { return (at(axis) + offset[static_cast<std::size_t>(axis)]).to_double(); }
+  Fixed at(int axis) const { return exact[static_cast<std::size_t>(axis)]; }
+  // Sets one axis (tests and stages that model a position of their own).
+  void set(int axis, Fixed value) {
+    exact[static_cast<std::size_t>(axis)] = value;
+    position[axis] = value.to_double();
+  }
 };
+
+// Whether two states describe the same machine: everything but the
+// filament counter, which counts what a stream pushed, not where it is.
+bool same_machine(const MachineState& a, const MachineState& b);
 
 }  // namespace gcode

@@ -23,6 +23,7 @@
 #include <string_view>
 #include <vector>
 
+#include "gcode/core/line_builder.hpp"
 #include "gcode/core/machine_state.hpp"
 
 namespace gcode {
@@ -95,6 +96,9 @@ struct PausePoint {
   // The highest Z anything was printed at so far; the head travels above it.
   // Below the current Z (or 0) it is ignored.
   double top_z = 0;
+  // The input's decimals per letter: computed numbers (E - 2, Z + lift, the
+  // park position, feed rates) are written with no more. Null: X/Y/Z 3, E 5, F 0.
+  const Precision* precision = nullptr;
 };
 
 struct PauseBlock {

@@ -1,0 +1,80 @@
+#include "gcode/core/fixed.hpp"
+
+#include "gcode/core/number.hpp"
+
+namespace gcode {
+
+namespace {
+
+constexpr std::int64_t kPow10[] = {1,
+                                   10,
+                                   100,
+                                   1000,
+                                   10000,
+                                   100000,
+                                   1000000,
+                                   10000000,
+                                   100000000,
+                                   1000000000,
+                                   10000000000,
+                                   100000000000,
+                                   1000000000000,
+                                   10000000000000,
+                                   100000000000000,
+                                   1000000000000000,
+                                   10000000000000000,
+                                   100000000000000000,
+                                   1000000000000000000};
+
+// a / b rounded half away from zero (b > 0).
+std::int64_t divide_rounded(std::int64_t a, std::int64_t b) {
+  std::int64_t q = a / b;
+  std::int64_t r = a % b;
+  if (r < 0) r = -r;
+  if (2 * r >= b) q += a < 0 ? -1 : 1;
+  return q;
+}
+
+}  // namespace
+
+Fixed Fixed::from_decimal(std::int64_t mantissa, int decimals) {
+  if (decimals <= kDecimals) {
+    if (decimals < 0) decimals = 0;
+    return from_units(mul_sat(mantissa, kPow10[kDecimals - decimals]));
+  }
+  if (decimals - kDecimals > 18) return Fixed();
+  return from_units(divide_rounded(mantissa, kPow10[decimals - kDecimals]));
+}
+
+Fixed Fixed::from_double(double value) {
+  if (!(value == value)) return Fixed();
+  if (value >= static_cast<double>(kMax) / kOne) return Fixed(kMax);
+  if (value <= -static_cast<double>(kMax) / kOne) return Fixed(-kMax);
+  return Fixed(to_scaled(value, kDecimals));
+}
+
+double Fixed::to_double() const {
+  // Below 2^53 the integer is exact, so one IEEE division rounds correctly:
+  // the same double as parsing the decimal text.
+  return static_cast<double>(units_) / 1e9;
+}
+
+std::int64_t Fixed::scaled(int decimals) const {
+  if (decimals >= kDecimals) return units_;
+  if (decimals < 0) decimals = 0;
+  return divide_rounded(units_, kPow10[kDecimals - decimals]);
+}
+
+Fixed Fixed::rounded(int decimals) const {
+  if (decimals >= kDecimals) return *this;
+  if (decimals < 0) decimals = 0;
+  return Fixed(mul_sat(scaled(decimals), kPow10[kDecimals - decimals]));
+}
+
+std::size_t Fixed::format(int decimals, char* out) const {
+  if (decimals > kDecimals) decimals = kDecimals;
+  if (decimals < 0) decimals = 0;
+  return format_scaled(scaled(decimals), decimals, out);
+}
+
+}  // namespace gcode
