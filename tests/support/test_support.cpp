@@ -1,5 +1,8 @@
 #include "test_support.hpp"
 
+#include "gcode/core/output_buffer.hpp"
+#include "gcode/pipeline/writer.hpp"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -115,6 +118,24 @@ gcode::MachineState replay_state(std::string_view text) {
   gcode::RawLine raw;
   while (split.next(raw)) state.apply(gcode::Line::parse(raw.text));
   return state;
+}
+
+std::string run_stages(gcode::Pipeline& pipeline, std::string_view text) {
+  std::string out;
+  {
+    gcode::OutputBuffer buffer(out);
+    gcode::GcodeWriter writer(buffer);
+    pipeline.add(writer);
+    pipeline.run_text(text);
+  }
+  return out;
+}
+
+std::string run_stages(std::string_view text, std::initializer_list<gcode::Stage*> stages, bool layers) {
+  gcode::LayerMarkers markers;
+  gcode::Pipeline pipeline(markers, gcode::PipelineOptions{.layers = layers});
+  for (gcode::Stage* s : stages) pipeline.add(*s);
+  return run_stages(pipeline, text);
 }
 
 }  // namespace gctest

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "gcode/core/machine_state.hpp"
+#include "gcode/pipeline/pipeline.hpp"
 
 namespace gctest {
 
@@ -41,5 +42,11 @@ struct ReplayedMove {
 };
 std::vector<ReplayedMove> replay_moves(std::string_view text);
 gcode::MachineState replay_state(std::string_view text);
+
+// Runs `text` through `stages` and a GcodeWriter; returns what was written.
+// `layers`: track layers (else every line is start code).
+std::string run_stages(std::string_view text, std::initializer_list<gcode::Stage*> stages, bool layers = true);
+// The same with a pipeline the caller set up (its stages added, no writer yet).
+std::string run_stages(gcode::Pipeline& pipeline, std::string_view text);
 
 }  // namespace gctest

@@ -16,11 +16,6 @@ using gcode::SubdivideOptions;
 
 namespace {
 
-struct StringSink : gcode::TextSink {
-  std::string text;
-  void write(std::string_view bytes) override { text.append(bytes); }
-};
-
 struct Result {
   std::string out;
   gcode::SubdivideStats stats;
@@ -28,18 +23,13 @@ struct Result {
 };
 
 Result subdivide(std::string_view input, const SubdivideOptions& options) {
-  StringSink sink;
   gcode::Diagnostics diag("test", -1);
-  gcode::Subdivider s(options, sink, &diag);
-  gcode::MachineState state;
-  gcode::MemoryLineSplitter split(input);
-  gcode::RawLine raw;
-  while (split.next(raw)) {
-    gcode::Line line = gcode::Line::parse(raw.text);
-    gcode::Move move = state.apply(line);
-    s.process(raw, line, move, state);
-  }
-  return {sink.text, s.stats(), diag.warnings()};
+  gcode::LayerMarkers markers;
+  gcode::Pipeline pipeline(markers, gcode::PipelineOptions{.layers = false});
+  gcode::Subdivider s(options, pipeline.precision(), &diag);
+  pipeline.add(s);
+  std::string out = gctest::run_stages(pipeline, input);
+  return {out, s.stats(), diag.warnings()};
 }
 
 SubdivideOptions max_of(double mm) {
@@ -236,16 +226,12 @@ TEST_CASE("the piece limit from max or latency and buffer and rate and the min f
 TEST_CASE("the line rate wins over the length limit and is said once", "[subdivide]") {
   SubdivideOptions o = max_of(0.2);
   o.max_rate = 100;  // 100 mm/s at 100 lines/s: 1 mm pieces
-  StringSink sink;
   gcode::Diagnostics diag("test", -1);
-  gcode::Subdivider s(o, sink, &diag);
-  gcode::MachineState state;
-  for (std::string_view text : {"G1 X0 Y0 F6000", "G1 X10", "G1 X0"}) {
-    gcode::RawLine raw{text, "\n", 1, 0};
-    gcode::Line line = gcode::Line::parse(text);
-    gcode::Move m = state.apply(line);
-    s.process(raw, line, m, state);
-  }
+  gcode::LayerMarkers markers;
+  gcode::Pipeline pipeline(markers, gcode::PipelineOptions{.layers = false});
+  gcode::Subdivider s(o, pipeline.precision(), &diag);
+  pipeline.add(s);
+  gctest::run_stages(pipeline, "G1 X0 Y0 F6000\nG1 X10\nG1 X0\n");
   CHECK(diag.warnings() == 1);
   CHECK(s.stats().pieces == 2 * 11);
 }

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "gcode/core/line_builder.hpp"
+
 namespace gcode {
 
 namespace {
@@ -26,6 +28,7 @@ struct LayerTracker::View {
   const RawLine& raw;
   const Line& line;
   const Move& move;
+  const MachineState& before;
   const MachineState& after;
   int feature;
   const CommentInfo& info;
@@ -66,20 +69,25 @@ int LayerTracker::feature_id(std::string_view name) {
 
 void LayerTracker::push(const RawLine& raw) {
   Line line = Line::parse(raw.text);
+  if (precision_ != nullptr)
+    for (const Word& w : line)
+      if (w.has_value) precision_->observe(w.letter, w.decimals);
   CommentInfo info;
   if (line.kind == CommandKind::None && !line.comment.empty()) {
     info = markers_.classify(line.comment_text());
     if (info.is_type) feature_ = feature_id(info.type);
   }
-  // The state just before a held run starts is what a sink sees at a boundary
-  // placed on the run's first line. Only hold() reads `before`, and only for
-  // a run's first line, so before_tail_ is the right thing to pass.
-  if (mode_ != LayerMode::Undecided && tail_.items.empty()) before_tail_ = state_;
+  previous_ = state_;
   Move move = state_.apply(line);
-  step(View{raw, line, move, state_, feature_, info}, before_tail_);
+  View v{raw, line, move, previous_, state_, feature_, info};
+  if (!track_layers_) {
+    emit(v);
+    return;
+  }
+  step(v);
 }
 
-void LayerTracker::step(const View& v, const MachineState& before) {
+void LayerTracker::step(const View& v) {
   if (mode_ == LayerMode::Undecided) {
     keep(pending_, v);
     if (v.info.marker != MarkerKind::None) {
@@ -96,18 +104,19 @@ void LayerTracker::step(const View& v, const MachineState& before) {
   }
   if (v.move.extruding) {
     resolve_tail_for_extrusion(v);
-    emit(v.raw, v.line, v.move, v.after, v.feature);
+    emit(v);
     if (mode_ == LayerMode::Heuristic || layers_ > 0) layer_z_ = v.move.end[kZ];
     return;
   }
-  hold(v, before);
+  hold(v);
 }
 
-void LayerTracker::hold(const View& v, const MachineState& before) {
-  if (tail_.items.empty() && &before != &before_tail_) before_tail_ = before;
+void LayerTracker::hold(const View& v) {
+  if (tail_.items.empty()) before_tail_ = v.before;
   keep(tail_, v);
   if (tail_.arena.size() > kTailBytes) {
     emit_tail(0, tail_.items.size());
+    before_tail_ = tail_.items.back().after;
     tail_.clear();
   }
 }
@@ -125,7 +134,7 @@ void LayerTracker::resolve_undecided(LayerMode mode) {
     raw.number = it.number;
     raw.offset = it.offset;
     Line line = Line::parse(raw.text);
-    step(View{raw, line, it.move, it.after, it.feature, it.marker}, i == 0 ? initial : old.items[i - 1].after);
+    step(View{raw, line, it.move, i == 0 ? initial : old.items[i - 1].after, it.after, it.feature, it.marker});
   }
 }
 
@@ -246,28 +255,29 @@ void LayerTracker::resolve_heuristic(const View& extrusion) {
   emit_tail(boundary, items.size());
 }
 
-void LayerTracker::emit(const RawLine& raw, const Line& line, const Move& move, const MachineState& after,
-                        int feature) {
-  sink_.on_line(TrackedLine{raw, line, move, after, region_, layers_, feature});
+void LayerTracker::emit(const View& v) {
+  sink_.on_line(TrackedLine{v.raw, v.line, v.move, v.before, v.after, region_, layers_, v.feature, LineOrigin::Input});
 }
 
-void LayerTracker::emit_item(const Item& item, const std::string& arena) {
+void LayerTracker::emit_item(const Item& item, const std::string& arena, const MachineState& before) {
   RawLine raw;
   raw.text = std::string_view(arena).substr(item.text_pos, item.text_len);
   raw.ending = std::string_view(arena).substr(item.text_pos + item.text_len, item.ending_len);
   raw.number = item.number;
   raw.offset = item.offset;
   Line line = Line::parse(raw.text);
-  emit(raw, line, item.move, item.after, item.feature);
+  sink_.on_line(
+      TrackedLine{raw, line, item.move, before, item.after, region_, layers_, item.feature, LineOrigin::Input});
 }
 
 void LayerTracker::emit_tail(std::size_t from, std::size_t to) {
-  for (std::size_t i = from; i < to; ++i) emit_item(tail_.items[i], tail_.arena);
+  for (std::size_t i = from; i < to; ++i) emit_item(tail_.items[i], tail_.arena, tail_state_before(i));
 }
 
 void LayerTracker::finish() {
   if (finished_) return;
   finished_ = true;
+  if (!track_layers_) return;
   if (mode_ == LayerMode::Undecided) resolve_undecided(LayerMode::Heuristic);
   if (layers_ > 0) {
     std::uint64_t first_line = 0, offset = 0;

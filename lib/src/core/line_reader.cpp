@@ -24,55 +24,83 @@ void split_at(std::string_view data, std::size_t start, std::size_t nl, RawLine&
 
 }  // namespace
 
-LineReader::LineReader(int fd, std::size_t block_size)
-    : fd_(fd), block_size_(block_size), buffer_(block_size * 2) {}
-
-bool LineReader::refill() {
-  // Move the unfinished line to the front, grow if a single line fills the buffer.
-  if (begin_ > 0) {
-    std::memmove(buffer_.data(), buffer_.data() + begin_, end_ - begin_);
-    end_ -= begin_;
-    begin_ = 0;
-  }
-  if (buffer_.size() - end_ < block_size_) buffer_.resize(buffer_.size() * 2);
+std::size_t read_some(int fd, char* out, std::size_t bytes) {
   for (;;) {
-    ssize_t n = ::read(fd_, buffer_.data() + end_, buffer_.size() - end_);
-    if (n > 0) {
-      end_ += static_cast<std::size_t>(n);
-      return true;
-    }
-    if (n == 0) {
-      eof_ = true;
-      return false;
-    }
+    ssize_t n = ::read(fd, out, bytes);
+    if (n >= 0) return static_cast<std::size_t>(n);
     if (errno == EINTR) continue;
     throw std::system_error(errno, std::generic_category(), "read");
   }
 }
 
-bool LineReader::next(RawLine& line) {
-  std::size_t scan_from = begin_;
-  for (;;) {
-    const char* base = buffer_.data();
-    const void* hit = std::memchr(base + scan_from, '\n', end_ - scan_from);
-    if (hit != nullptr) {
-      std::size_t nl = static_cast<const char*>(hit) - base;
-      std::string_view data(base, end_);
-      split_at(data, begin_, nl, line);
-      break;
-    }
-    if (eof_ || (scan_from = end_ - begin_, !refill())) {
-      if (begin_ == end_) return false;
-      std::string_view data(buffer_.data(), end_);
-      split_at(data, begin_, std::string_view::npos, line);
-      break;
-    }
-    // refill() moved the pending bytes to the front: continue where we stopped.
+LineSplitter::LineSplitter(std::size_t block_size)
+    : block_size_(block_size < 16 ? 16 : block_size), buffer_(block_size_ * 2) {}
+
+void LineSplitter::make_room(std::size_t bytes) {
+  // Move the unfinished line to the front; grow only when one line fills it.
+  if (begin_ > 0) {
+    std::memmove(buffer_.data(), buffer_.data() + begin_, end_ - begin_);
+    end_ -= begin_;
+    begin_ = 0;
   }
+  if (buffer_.size() - end_ < bytes) {
+    std::size_t size = buffer_.size();
+    while (size - end_ < bytes) size *= 2;
+    buffer_.resize(size);
+  }
+}
+
+char* LineSplitter::room() {
+  if (buffer_.size() - end_ < block_size_) make_room(block_size_);
+  return buffer_.data() + end_;
+}
+
+void LineSplitter::append(std::string_view bytes) {
+  if (buffer_.size() - end_ < bytes.size()) make_room(bytes.size());
+  std::memcpy(buffer_.data() + end_, bytes.data(), bytes.size());
+  end_ += bytes.size();
+}
+
+bool LineSplitter::next(RawLine& line) {
+  const char* base = buffer_.data();
+  std::string_view data(base, end_);
+  std::size_t from = begin_ + scanned_;
+  const void* hit = from < end_ ? std::memchr(base + from, '\n', end_ - from) : nullptr;
+  if (hit != nullptr) {
+    split_at(data, begin_, static_cast<std::size_t>(static_cast<const char*>(hit) - base), line);
+  } else if (ended_ && begin_ < end_) {
+    split_at(data, begin_, std::string_view::npos, line);
+  } else {
+    scanned_ = end_ - begin_;  // a long line is scanned once, not once per block
+    return false;
+  }
+  scanned_ = 0;
   line.number = ++line_number_;
   line.offset = consumed_;
   consumed_ += line.size();
   begin_ += line.size();
+  return true;
+}
+
+LineReader::LineReader(int fd, std::size_t block_size) : fd_(fd), splitter_(block_size) {}
+
+bool LineReader::fill() {
+  if (splitter_.ended()) return false;
+  char* room = splitter_.room();
+  std::size_t n = read_some(fd_, room, splitter_.room_size());
+  if (n == 0) {
+    splitter_.end_of_input();
+    return false;
+  }
+  splitter_.commit(n);
+  return true;
+}
+
+bool LineReader::next(RawLine& line) {
+  while (!splitter_.next(line)) {
+    if (splitter_.ended()) return false;
+    fill();
+  }
   return true;
 }
 

@@ -13,6 +13,9 @@ OutputBuffer::OutputBuffer(int fd, std::size_t capacity)
   std::signal(SIGPIPE, SIG_IGN);
 }
 
+OutputBuffer::OutputBuffer(std::string& target, std::size_t capacity)
+    : fd_(-1), target_(&target), capacity_(capacity), data_(capacity) {}
+
 OutputBuffer::~OutputBuffer() {
   try {
     flush();
@@ -40,6 +43,10 @@ void OutputBuffer::write_slow(std::string_view bytes) {
 }
 
 void OutputBuffer::write_all(const char* p, std::size_t n) {
+  if (target_ != nullptr) {
+    target_->append(p, n);
+    return;
+  }
   while (n > 0) {
     ssize_t w = ::write(fd_, p, n);
     if (w >= 0) {

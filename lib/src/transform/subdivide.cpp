@@ -103,37 +103,48 @@ struct Subdivider::Plan {
   Arc geometry;             // in file units
 };
 
-Subdivider::Subdivider(const SubdivideOptions& options, TextSink& out, Diagnostics* diagnostics)
-    : options_(options), out_(out), diagnostics_(diagnostics) {}
+Subdivider::Subdivider(const SubdivideOptions& options, const Precision& precision, Diagnostics* diagnostics,
+                       LayerSelection* selection)
+    : options_(options), precision_(precision), diagnostics_(diagnostics), selection_(selection) {}
 
 void Subdivider::warn(std::uint64_t line_number, std::string_view message) {
   if (diagnostics_ != nullptr) diagnostics_->warn(line_number, message);
 }
 
-void Subdivider::process(const RawLine& raw, const Line& line, const Move& move, const MachineState& after,
-                         bool selected) {
-  ++stats_.lines;
-  if (!raw.ending.empty()) ending_ = raw.ending == "\r\n" ? "\r\n" : "\n";
+void Subdivider::layer(const LayerInfo& info, const MachineState& before, Emitter& out) {
+  if (selection_ != nullptr) selection_->enter_layer(info);
+  out.layer(info, before);
+}
+
+void Subdivider::end_code(const EndCodeInfo& info, const MachineState& before, Emitter& out) {
+  if (selection_ != nullptr) selection_->enter_end_code();
+  out.end_code(info, before);
+}
+
+void Subdivider::line(const TrackedLine& t, Emitter& out) {
+  if (t.origin == LineOrigin::Input) ++stats_.lines;
+  const Line& line = t.line;
   if (line.malformed) {
     // Firmware-specific M codes with quoted text (Prusa's M862.3 P "MK3S") are
     // none of our business; an unreadable move or junk is worth a word.
     if (line.kind != CommandKind::Standard || line.letter == 'G')
-      warn(raw.number, "cannot read this line; passed through unchanged");
-  } else if (move.kind == MoveKind::Linear || move.kind == MoveKind::Arc) {
-    for (const Word& w : line)
-      if (axis_of(w.letter) >= 0 || w.letter == 'I' || w.letter == 'J') precision_.observe(w.letter, w.decimals);
+      warn(t.raw.number, "cannot read this line; passed through unchanged");
+  } else if (t.move.kind == MoveKind::Linear || t.move.kind == MoveKind::Arc) {
     Plan plan;
-    if (selected && plan_move(raw, line, move, after, plan)) {
-      write_pieces(raw, line, plan);
+    bool selected = selection_ == nullptr || selection_->selects(t);
+    if (selected && plan_move(t, plan)) {
+      write_pieces(t, plan, out);
       return;
     }
   }
-  out_.write(raw.text);
-  out_.write(raw.ending);
+  out.pass(t);
 }
 
-bool Subdivider::plan_move(const RawLine& raw, const Line& line, const Move& move, const MachineState& after,
-                           Plan& plan) {
+bool Subdivider::plan_move(const TrackedLine& t, Plan& plan) {
+  const RawLine& raw = t.raw;
+  const Line& line = t.line;
+  const Move& move = t.move;
+  const MachineState& after = t.state;
   bool arc = move.kind == MoveKind::Arc;
   if (move.ignored) return false;
   if (arc ? !options_.split_arcs : move.xy_length <= 0) return false;  // pure Z or E moves stay whole
@@ -251,7 +262,9 @@ bool Subdivider::plan_move(const RawLine& raw, const Line& line, const Move& mov
   return true;
 }
 
-void Subdivider::write_pieces(const RawLine& raw, const Line& line, const Plan& plan) {
+void Subdivider::write_pieces(const TrackedLine& t, const Plan& plan, Emitter& out) {
+  const RawLine& raw = t.raw;
+  const Line& line = t.line;
   ++stats_.moves_split;
   if (plan.arc) ++stats_.arcs;
   stats_.pieces += plan.pieces;
@@ -259,18 +272,16 @@ void Subdivider::write_pieces(const RawLine& raw, const Line& line, const Plan& 
   std::string_view code = line.code();
   std::size_t code_end = static_cast<std::size_t>(code.data() - raw.text.data()) + code.size();
   std::string_view rest = code.empty() ? std::string_view{} : raw.text.substr(code_end);
-  // A last line without a newline still needs one between its pieces: the file's own.
-  std::string_view ending = raw.ending.empty() ? ending_ : raw.ending;
 
   std::array<std::int64_t, 4> done{};  // relative axes: units written so far
   const double n = static_cast<double>(plan.pieces);
   char buffer[kPieceBuffer];
   for (std::uint64_t k = 1; k <= plan.pieces; ++k) {
     bool last = k == plan.pieces;
-    double t = static_cast<double>(k) / n;
+    double frac = static_cast<double>(k) / n;
     double cx = 0, cy = 0;
     if (plan.arc && !last) {
-      double angle = plan.geometry.start_angle + plan.geometry.sweep * t;
+      double angle = plan.geometry.start_angle + plan.geometry.sweep * frac;
       cx = plan.geometry.cx + plan.geometry.radius * std::cos(angle);
       cy = plan.geometry.cy + plan.geometry.radius * std::sin(angle);
     }
@@ -294,7 +305,7 @@ void Subdivider::write_pieces(const RawLine& raw, const Line& line, const Plan& 
       if (ax.relative) {
         std::int64_t target = ax.total;
         if (!last) {
-          double at = ax.start + (ax.end - ax.start) * t;
+          double at = ax.start + (ax.end - ax.start) * frac;
           if (plan.arc && a == kX) at = cx;
           if (plan.arc && a == kY) at = cy;
           target = to_scaled(at - ax.start, ax.decimals);
@@ -306,21 +317,26 @@ void Subdivider::write_pieces(const RawLine& raw, const Line& line, const Plan& 
         std::memcpy(p, ax.raw.data(), ax.raw.size());
         p += ax.raw.size();
       } else {
-        double at = last ? ax.end : ax.start + (ax.end - ax.start) * t;
+        double at = last ? ax.end : ax.start + (ax.end - ax.start) * frac;
         if (plan.arc && !last && a == kX) at = cx;
         if (plan.arc && !last && a == kY) at = cy;
         p += format_number(at, ax.decimals, p);
       }
     }
-    std::string_view end_of_line = last ? raw.ending : ending;
+    std::string_view piece(buffer, static_cast<std::size_t>(p - buffer));
     if (k == 1 && !rest.empty()) {
-      out_.write(std::string_view(buffer, static_cast<std::size_t>(p - buffer)));
-      out_.write(rest);
-      out_.write(end_of_line);
-      continue;
+      // The comment (any length) stays on the first piece.
+      scratch_.assign(piece);
+      scratch_.append(rest);
+      piece = scratch_;
     }
-    for (char c : end_of_line) *p++ = c;  // at most "\r\n"; none after a final line without one
-    out_.write(std::string_view(buffer, static_cast<std::size_t>(p - buffer)));
+    // The last piece takes the input line's place (and its ending, also a
+    // missing final one); the others are new lines.
+    if (last) {
+      out.replace(t, piece);
+    } else {
+      out.insert(piece);
+    }
   }
 }
 

@@ -45,15 +45,26 @@ struct LayerInfo {
   bool empty = false;          // a marker with no extrusion before the next one
 };
 
-// Everything known about one line when it reaches the sink.
+// Where a line's text comes from, which decides how it is written back.
+enum class LineOrigin : std::uint8_t {
+  Input,     // the input's own line: written from its raw bytes
+  Changed,   // a stage rewrote an input line: new text, the input line's own ending
+  Inserted,  // a stage added it: written with the input's line ending
+};
+
+// Everything known about one line when it reaches a sink or a stage. The
+// references and views are valid during the call only.
 struct TrackedLine {
-  const RawLine& raw;
+  const RawLine& raw;          // text and ending; number = the input line (for a
+                               // line a stage made: the input line it came with)
   const Line& line;
   const Move& move;
+  const MachineState& before;  // before the line
   const MachineState& state;   // after the line
   Region region;
   int layer;                   // current layer index; 0 in the start code
   int feature;                 // index into LayerTracker::feature_name, -1 if none yet
+  LineOrigin origin = LineOrigin::Input;
 };
 
 class LayerSink {
@@ -75,9 +86,17 @@ class LayerSink {
 
 enum class LayerMode : std::uint8_t { Undecided, Markers, Heuristic };
 
+class Precision;
+
 class LayerTracker {
  public:
   LayerTracker(LayerSink& sink, const LayerMarkers& markers);
+
+  // Without layers every line goes to the sink at once, in the start code
+  // (for tools that need no layer: nothing is held back).
+  void set_track_layers(bool on) { track_layers_ = on; }
+  // Records the decimals the input uses per letter (see Precision).
+  void set_precision(Precision* precision) { precision_ = precision; }
 
   // Feeds one line. It reaches the sink now or later, always in input order.
   void push(const RawLine& raw);
@@ -88,6 +107,7 @@ class LayerTracker {
   int layer_count() const { return layers_; }
   // The state after the last line pushed (not necessarily emitted yet).
   const MachineState& state() const { return state_; }
+  bool finished() const { return finished_; }
   const std::string& feature_name(int id) const { return features_[static_cast<std::size_t>(id)]; }
   int feature_count() const { return static_cast<int>(features_.size()); }
 
@@ -115,15 +135,15 @@ class LayerTracker {
   struct View;  // an item and where its text lives
 
   static void keep(Held& held, const View& v);
-  void step(const View& v, const MachineState& before);
-  void hold(const View& v, const MachineState& before);
+  void step(const View& v);
+  void hold(const View& v);
   void resolve_undecided(LayerMode mode);
   void resolve_tail_for_extrusion(const View& extrusion);
   void resolve_markers(const View& extrusion);
   void resolve_heuristic(const View& extrusion);
   void emit_tail(std::size_t from, std::size_t to);
-  void emit(const RawLine& raw, const Line& line, const Move& move, const MachineState& after, int feature);
-  void emit_item(const Item& item, const std::string& arena);
+  void emit(const View& v);
+  void emit_item(const Item& item, const std::string& arena, const MachineState& before);
   void begin_layer(LayerInfo info, std::size_t boundary);
   const MachineState& tail_state_before(std::size_t index) const;
   int feature_id(std::string_view name);
@@ -132,7 +152,8 @@ class LayerTracker {
   const LayerMarkers& markers_;
   LayerMode mode_ = LayerMode::Undecided;
   MachineState state_;
-  MachineState before_tail_;
+  MachineState previous_;     // before the line being pushed
+  MachineState before_tail_;  // before the first held line
   Held pending_;   // everything, while the mode is undecided
   Held tail_;      // lines since the last extrusion
   std::vector<double> undecided_z_;  // distinct extrusion Z seen while undecided
@@ -142,6 +163,8 @@ class LayerTracker {
   Region region_ = Region::StartCode;
   double layer_z_ = 0;
   bool finished_ = false;
+  bool track_layers_ = true;
+  Precision* precision_ = nullptr;
 };
 
 // Pushes every line of `reader` through `tracker`, then finishes it.

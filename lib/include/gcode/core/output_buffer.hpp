@@ -6,6 +6,7 @@
 // tool's main turns into a quiet exit.
 #include <cstddef>
 #include <stdexcept>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -18,6 +19,8 @@ struct BrokenPipe : std::runtime_error {
 class OutputBuffer {
  public:
   explicit OutputBuffer(int fd, std::size_t capacity = 1 << 18);
+  // Collects into a string instead (tests, text a tool builds in memory).
+  explicit OutputBuffer(std::string& target, std::size_t capacity = 1 << 16);
   ~OutputBuffer();  // flushes; errors in the destructor are swallowed
   OutputBuffer(const OutputBuffer&) = delete;
   OutputBuffer& operator=(const OutputBuffer&) = delete;
@@ -42,6 +45,7 @@ class OutputBuffer {
   void write_all(const char* p, std::size_t n);
 
   int fd_;
+  std::string* target_ = nullptr;
   std::size_t capacity_;
   std::vector<char> data_;
   std::size_t used_ = 0;

@@ -22,12 +22,14 @@
 // G2/G3 arcs become G1 chords that respect both the limit and a deviation
 // tolerance; E and Z are shared out along the arc length.
 #include <cstdint>
+#include <string>
 #include <string_view>
 
 #include "gcode/core/line.hpp"
 #include "gcode/core/line_builder.hpp"
-#include "gcode/core/line_reader.hpp"
 #include "gcode/core/machine_state.hpp"
+#include "gcode/pipeline/selection.hpp"
+#include "gcode/pipeline/stage.hpp"
 
 namespace gcode {
 
@@ -52,13 +54,6 @@ struct SubdivideOptions {
   double piece_limit(double feedrate, bool* rate_won = nullptr) const;
 };
 
-// Where the output text goes (an OutputBuffer in a tool, a string in tests).
-class TextSink {
- public:
-  virtual ~TextSink() = default;
-  virtual void write(std::string_view bytes) = 0;
-};
-
 struct SubdivideStats {
   std::uint64_t lines = 0;        // input lines
   std::uint64_t moves_split = 0;  // input moves replaced by pieces
@@ -66,33 +61,36 @@ struct SubdivideStats {
   std::uint64_t arcs = 0;         // arcs linearised
 };
 
-class Subdivider {
+// The pipeline stage: moves in the selection longer than the limit become
+// pieces (the last one keeps the input line's ending), everything else
+// passes on unchanged.
+class Subdivider : public Stage {
  public:
-  // `diagnostics` may be null (no warnings).
-  Subdivider(const SubdivideOptions& options, TextSink& out, Diagnostics* diagnostics);
+  // `precision`: the input's decimals per letter (Pipeline::precision), at
+  // least what pieces are written with. `selection` (optional) limits the
+  // splitting to layers, heights and features. `diagnostics` may be null.
+  Subdivider(const SubdivideOptions& options, const Precision& precision, Diagnostics* diagnostics,
+             LayerSelection* selection = nullptr);
 
-  // One input line, after MachineState::apply: `move` is what it did and
-  // `after` the state after it. `selected`: whether the line lies where the
-  // user wants splitting (layer, height and feature filters).
-  void process(const RawLine& raw, const Line& line, const Move& move, const MachineState& after,
-               bool selected = true);
+  void line(const TrackedLine& t, Emitter& out) override;
+  void layer(const LayerInfo& info, const MachineState& before, Emitter& out) override;
+  void end_code(const EndCodeInfo& info, const MachineState& before, Emitter& out) override;
 
   const SubdivideStats& stats() const { return stats_; }
 
  private:
   struct Plan;
-  bool plan_move(const RawLine& raw, const Line& line, const Move& move, const MachineState& after,
-                 Plan& plan);
-  void write_pieces(const RawLine& raw, const Line& line, const Plan& plan);
+  bool plan_move(const TrackedLine& t, Plan& plan);
+  void write_pieces(const TrackedLine& t, const Plan& plan, Emitter& out);
   void warn(std::uint64_t line_number, std::string_view message);
 
   SubdivideOptions options_;
-  TextSink& out_;
+  const Precision& precision_;
   Diagnostics* diagnostics_;
-  Precision precision_;
+  LayerSelection* selection_;
   SubdivideStats stats_;
   bool warned_rate_ = false;
-  std::string_view ending_ = "\n";  // the input's line ending ("\n" or "\r\n"), static text
+  std::string scratch_;  // the first piece with the input's comment
 };
 
 }  // namespace gcode

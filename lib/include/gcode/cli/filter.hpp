@@ -1,0 +1,70 @@
+#pragma once
+// One run of a filter tool: the input (FILE or standard input), the
+// pipeline with the tool's stages, the writer, and the output (standard
+// output, -o FILE, or -i: FILE replaced atomically, only on success).
+//
+//   cli::Filter run(options);                 // opens the input
+//   LayerSelection sel = run.selection(text); // counts layers first if "-3" asks
+//   Subdivider stage(split, run.pipeline().precision(), &diag, &sel);
+//   run.add(stage);
+//   run.write();                              // writer, output, run, commit
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string_view>
+
+#include "gcode/cli/io.hpp"
+#include "gcode/cli/tool.hpp"
+#include "gcode/core/output_buffer.hpp"
+#include "gcode/core/print_area.hpp"
+#include "gcode/pipeline/pipeline.hpp"
+#include "gcode/pipeline/writer.hpp"
+
+namespace gcode::cli {
+
+class Filter {
+ public:
+  explicit Filter(const FilterOptions& options, PipelineOptions pipeline = {});
+  Filter(const Filter&) = delete;
+  Filter& operator=(const Filter&) = delete;
+
+  InputFile& input() { return input_; }
+  Pipeline& pipeline() { return pipeline_; }
+  const LayerMarkers& markers() const { return markers_; }
+
+  // The layers in the input: reads it once (a pipe is kept in a temp file
+  // first) and goes back to its start.
+  int count_layers();
+  // Parses a selection and, when a range counts from the end, counts the
+  // layers first. Throws UsageError when it does not parse.
+  LayerSelection selection(const SelectionText& text);
+  // What the file says about the printer (bed, height, the print's box): a
+  // regular file is read at both ends (PrusaSlicer writes its config last);
+  // from a pipe only the header, which stays buffered for the run.
+  PrintArea print_area();
+
+  void add(Stage& stage) { pipeline_.add(stage); }
+  // Opens the output, adds the writer after the tool's stages and runs the
+  // whole input through; then `verify` (if given) checks what the run found
+  // and may throw. The output is committed (-i: renamed over FILE) only if
+  // everything succeeded.
+  void write(const std::function<void()>& verify = {});
+  // Runs the stages without any G-code output (reports).
+  void run() { pipeline_.run(input_.fd()); }
+  // The writer's output, once write() opened it (for counts in messages).
+  const OutputBuffer* output() const { return buffer_ ? &*buffer_ : nullptr; }
+
+ private:
+  const FilterOptions& options_;
+  LayerMarkers markers_;
+  InputFile input_;
+  Pipeline pipeline_;
+  std::optional<OutputFile> file_;
+  std::optional<OutputBuffer> buffer_;
+  std::optional<GcodeWriter> writer_;
+};
+
+// Counts the layers of everything `fd` delivers (no output).
+int count_layers(int fd, const LayerMarkers& markers);
+
+}  // namespace gcode::cli
