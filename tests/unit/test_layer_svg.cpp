@@ -10,23 +10,9 @@
 
 namespace {
 
-struct Feed : gcode::LayerSink {
-  explicit Feed(gcode::LayerDrawer& d) : drawer(d) {}
-  void on_layer(const gcode::LayerInfo& l, const gcode::MachineState&) override { drawer.on_layer(l); }
-  void on_line(const gcode::TrackedLine& t) override { drawer.on_line(t); }
-  gcode::LayerDrawer& drawer;
-};
-
 std::vector<gcode::LayerDrawing> draw(const std::string& text, int layer) {
   gcode::LayerDrawer drawer([layer](int l) { return l == layer; });
-  Feed feed(drawer);
-  gcode::LayerMarkers markers;
-  gcode::LayerTracker tracker(feed, markers);
-  gcode::MemoryLineSplitter lines(text);
-  gcode::RawLine raw;
-  while (lines.next(raw)) tracker.push(raw);
-  tracker.finish();
-  drawer.finish();
+  gctest::run_stages(text, {&drawer});
   return std::move(drawer.drawings());
 }
 

@@ -93,7 +93,7 @@ std::string layer_table_text(const LayerTable& table, const LayerTracker& tracke
                    format_duration(t->total()), format_duration(t->start),
                    format_duration(t->total() - t->start - t->end), format_duration(t->end));
   }
-  const Bounds& b = table.extrusion_bounds();
+  const Box3& b = table.extrusion_bounds();
   if (!b.empty()) {
     fmt::format_to(std::back_inserter(out), "extrusion bounds: X {:.3f}..{:.3f}  Y {:.3f}..{:.3f}  Z {:.3f}..{:.3f}\n",
                    b.min[0], b.max[0], b.min[1], b.max[1], b.min[2], b.max[2]);
@@ -153,7 +153,7 @@ std::string layer_table_json(const LayerTable& table, const LayerTracker& tracke
                  table.layers().size(), table.layers_extruded(), table.total_filament(), grams, o.density,
                  o.filament_diameter,
                  table.total_lines(), table.total_bytes());
-  const Bounds& b = table.extrusion_bounds();
+  const Box3& b = table.extrusion_bounds();
   if (b.empty()) {
     out += "null";
   } else {

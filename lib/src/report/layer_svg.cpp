@@ -52,25 +52,7 @@ void num(std::string& out, double v, int decimals = 2) {
   out += number_text(v, decimals, buf);
 }
 
-struct Box {
-  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-  bool empty() const { return x0 > x1; }
-  void add(double x, double y) {
-    x0 = std::min(x0, x);
-    y0 = std::min(y0, y);
-    x1 = std::max(x1, x);
-    y1 = std::max(y1, y);
-  }
-  void add(const Box& b) {
-    if (b.empty()) return;
-    add(b.x0, b.y0);
-    add(b.x1, b.y1);
-  }
-  double w() const { return x1 - x0; }
-  double h() const { return y1 - y0; }
-};
-
-void add_paths(Box& box, const std::vector<DrawnPath>& paths, bool travel) {
+void add_paths(Box2& box, const std::vector<DrawnPath>& paths, bool travel) {
   for (const DrawnPath& p : paths) {
     if (p.travel && !travel) continue;
     for (std::size_t i = 0; i + 1 < p.xy.size(); i += 2) box.add(p.xy[i], p.xy[i + 1]);
@@ -79,15 +61,15 @@ void add_paths(Box& box, const std::vector<DrawnPath>& paths, bool travel) {
 
 // What one picture shows: its paths with a margin (a whole bed would leave a
 // small print a speck); the bed outline shows where it falls inside.
-Box picture_box(const LayerDrawing& d, const SvgOptions& o) {
-  Box box;
+Box2 picture_box(const LayerDrawing& d, const SvgOptions& o) {
+  Box2 box;
   add_paths(box, d.paths, o.travel);
   if (o.below) add_paths(box, d.below, false);
   if (box.empty())
-    for (const auto& p : o.bed) box.add(p[0], p[1]);
+    for (const Point2& p : o.bed) box.add(p.x, p.y);
   if (box.empty()) box.add(0, 0), box.add(10, 10);
-  double margin = std::max(1.0, 0.03 * std::max(box.w(), box.h()));
-  box.x0 -= margin, box.y0 -= margin, box.x1 += margin, box.y1 += margin;
+  double margin = std::max(1.0, 0.03 * std::max(box.width(), box.depth()));
+  box.min_x -= margin, box.min_y -= margin, box.max_x += margin, box.max_y += margin;
   return box;
 }
 
@@ -114,20 +96,20 @@ void polyline(std::string& out, const DrawnPath& p, bool with_width) {
 }
 
 // The layer in bed coordinates (Y up), to be placed in a viewBox of `box`.
-void layer_body(std::string& out, const LayerDrawing& d, const SvgOptions& o, const Box& box) {
+void layer_body(std::string& out, const LayerDrawing& d, const SvgOptions& o, const Box2& box) {
   out += "<g transform=\"matrix(1 0 0 -1 0 ";
-  num(out, box.y0 + box.y1);
+  num(out, box.min_y + box.max_y);
   out += ")\" fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
-  double fine = std::max(box.w(), box.h()) / 500;  // a hairline at any scale
+  double fine = std::max(box.width(), box.depth()) / 500;  // a hairline at any scale
   if (!o.bed.empty()) {
     out += "<polygon fill=\"#f6f6f2\" stroke=\"#9a9a9a\" stroke-width=\"";
     num(out, 2 * fine);
     out += "\" points=\"";
     for (std::size_t i = 0; i < o.bed.size(); ++i) {
       if (i) out += ' ';
-      num(out, o.bed[i][0]);
+      num(out, o.bed[i].x);
       out += ',';
-      num(out, o.bed[i][1]);
+      num(out, o.bed[i].y);
     }
     out += "\"/>\n";
   }
@@ -176,16 +158,16 @@ void layer_body(std::string& out, const LayerDrawing& d, const SvgOptions& o, co
   out += "</g>\n";
 }
 
-void nested_svg(std::string& out, double x, double y, double w, double h, const Box& box) {
+void nested_svg(std::string& out, double x, double y, double w, double h, const Box2& box) {
   fmt::format_to(std::back_inserter(out), "<svg x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" viewBox=\"", x,
                  y, w, h);
-  num(out, box.x0, 3);
+  num(out, box.min_x, 3);
   out += ' ';
-  num(out, box.y0, 3);
+  num(out, box.min_y, 3);
   out += ' ';
-  num(out, box.w(), 3);
+  num(out, box.width(), 3);
   out += ' ';
-  num(out, box.h(), 3);
+  num(out, box.depth(), 3);
   out += "\" preserveAspectRatio=\"xMidYMid meet\">\n";
 }
 
@@ -292,7 +274,8 @@ std::string expand_layer_pattern(std::string_view pattern, int layer) {
 LayerDrawer::LayerDrawer(std::function<bool(int)> selected, double filament_diameter)
     : selected_(std::move(selected)), filament_area_(kPi * filament_diameter * filament_diameter / 4) {}
 
-void LayerDrawer::on_layer(const LayerInfo& layer) {
+void LayerDrawer::layer(const LayerInfo& layer, const MachineState& before, Emitter& out) {
+  out.layer(layer, before);
   close_layer();
   current_ = LayerDrawing{};
   current_.layer = layer.index;
@@ -322,7 +305,7 @@ void LayerDrawer::close_layer() {
   in_layer_ = false;
 }
 
-void LayerDrawer::finish() { close_layer(); }
+void LayerDrawer::finish(Emitter&) { close_layer(); }
 
 void LayerDrawer::add_segment(bool travel, int feature, float width, double x0, double y0, double x1, double y1) {
   auto fx0 = static_cast<float>(x0), fy0 = static_cast<float>(y0);
@@ -339,7 +322,8 @@ void LayerDrawer::add_segment(bool travel, int feature, float width, double x0, 
   current_.paths.push_back(DrawnPath{travel, feature, width, {fx0, fy0, static_cast<float>(x1), static_cast<float>(y1)}});
 }
 
-void LayerDrawer::on_line(const TrackedLine& t) {
+void LayerDrawer::line(const TrackedLine& t, Emitter& out) {
+  out.pass(t);
   if (!t.line.comment.empty()) {
     std::string_view c = t.line.comment_text();
     if (c.substr(0, 6) == "WIDTH:") {
@@ -396,9 +380,9 @@ void LayerDrawer::on_line(const TrackedLine& t) {
 }
 
 std::string layer_svg(const LayerDrawing& d, const SvgOptions& o) {
-  Box box = picture_box(d, o);
-  double scale = o.size_px / std::max(box.w(), box.h());
-  double draw_w = box.w() * scale, draw_h = box.h() * scale;
+  Box2 box = picture_box(d, o);
+  double scale = o.size_px / std::max(box.width(), box.depth());
+  double draw_w = box.width() * scale, draw_h = box.depth() * scale;
   const double title_h = 36, legend_w = 210;
   std::vector<int> features;
   features_used(d, features);
@@ -421,14 +405,14 @@ std::string layer_svg(const LayerDrawing& d, const SvgOptions& o) {
 std::string layer_sheet_svg(const std::vector<LayerDrawing>& drawings, const SvgOptions& o, int columns) {
   if (drawings.empty()) throw std::invalid_argument("no layer to draw");
   // One scale for all: the union of the pictures' boxes.
-  Box box;
+  Box2 box;
   for (const LayerDrawing& d : drawings) box.add(picture_box(d, o));
   auto n = static_cast<int>(drawings.size());
   if (columns <= 0) columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
   int rows = (n + columns - 1) / columns;
   double cell = std::min(o.size_px, 400.0);
-  double scale = cell / std::max(box.w(), box.h());
-  double cell_w = box.w() * scale, cell_h = box.h() * scale;
+  double scale = cell / std::max(box.width(), box.depth());
+  double cell_w = box.width() * scale, cell_h = box.depth() * scale;
   const double title_h = 26, gap = 12, legend_w = 210;
   std::vector<int> features;
   for (const LayerDrawing& d : drawings) features_used(d, features);
@@ -445,7 +429,7 @@ std::string layer_sheet_svg(const std::vector<LayerDrawing>& drawings, const Svg
     fmt::format_to(std::back_inserter(out),
                    "<rect x=\"{:.3f}\" y=\"{:.3f}\" width=\"{:.3f}\" height=\"{:.3f}\" fill=\"none\" stroke=\"#bbbbbb\" "
                    "stroke-width=\"{:.3f}\"/>\n",
-                   box.x0, box.y0, box.w(), box.h(), 1 / scale);
+                   box.min_x, box.min_y, box.width(), box.depth(), 1 / scale);
     layer_body(out, d, o, box);
     out += "</svg>\n";
   }

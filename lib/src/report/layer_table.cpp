@@ -4,26 +4,20 @@
 
 namespace gcode {
 
-void Bounds::add(double x, double y, double z) {
-  const double p[3] = {x, y, z};
-  for (int i = 0; i < 3; ++i) {
-    min[static_cast<std::size_t>(i)] = std::min(min[static_cast<std::size_t>(i)], p[i]);
-    max[static_cast<std::size_t>(i)] = std::max(max[static_cast<std::size_t>(i)], p[i]);
-  }
-}
-
 LayerTable::LayerTable() { start_.region = Region::StartCode; }
 
-void LayerTable::on_layer(const LayerInfo& info) {
+void LayerTable::layer(const LayerInfo& info, const MachineState& before, Emitter& out) {
   LayerRow row;
   row.region = Region::Layer;
   row.info = info;
   layers_.push_back(row);
+  out.layer(info, before);
 }
 
-void LayerTable::on_end_code() {
+void LayerTable::end_code(const EndCodeInfo& info, const MachineState& before, Emitter& out) {
   has_end_ = true;
   end_.region = Region::EndCode;
+  out.end_code(info, before);
 }
 
 LayerRow& LayerTable::current() {
@@ -32,7 +26,8 @@ LayerRow& LayerTable::current() {
   return layers_.back();
 }
 
-void LayerTable::on_line(const TrackedLine& t) {
+void LayerTable::line(const TrackedLine& t, Emitter& out) {
+  out.pass(t);
   LayerRow& row = current();
   if (row.first_line == 0) {
     row.first_line = t.raw.number;

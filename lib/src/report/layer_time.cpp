@@ -21,12 +21,13 @@ double LayerTimes::cumulative(int index) const {
 
 LayerTimer::LayerTimer(const EstimatorOptions& options) : estimator_(options, this) {}
 
-void LayerTimer::on_line(const TrackedLine& t) {
+void LayerTimer::line(const TrackedLine& t, Emitter& out) {
+  out.pass(t);
   estimator_.set_tag(t.region == Region::EndCode ? kEndTag : (t.region == Region::Layer ? t.layer : 0));
   estimator_.add(t.line, t.move);
 }
 
-void LayerTimer::finish() { estimator_.finish(); }
+void LayerTimer::finish(Emitter&) { estimator_.finish(); }
 
 void LayerTimer::on_time(std::int64_t tag, double seconds) {
   if (tag == kEndTag) {

@@ -1,67 +1,58 @@
 #include "gcode/transform/layer_extract.hpp"
 
-#include <algorithm>
 #include <fmt/format.h>
 
-#include <string>
+#include <algorithm>
 
 namespace gcode {
 
-LayerExtractor::LayerExtractor(OutputBuffer& out, Selector selected, ExtractOptions options)
-    : out_(out), selected_(std::move(selected)), options_(options) {}
+LayerExtractor::LayerExtractor(Selector selected, const Precision& precision, ExtractOptions options)
+    : selected_(std::move(selected)), precision_(precision), options_(std::move(options)) {}
 
-void LayerExtractor::write_line(std::string_view text) {
-  out_.write(text);
-  out_.write(ending_);
-}
-
-void LayerExtractor::on_layer(const LayerInfo& layer, const MachineState& before) {
-  bool keep = selected_(layer);
+void LayerExtractor::layer(const LayerInfo& info, const MachineState& before, Emitter& out) {
+  bool keep = selected_(info);
   if (!keep) {
-    if (!skipped_) first_skipped_ = layer.index;
-    last_skipped_ = layer.index;
+    if (!skipped_) first_skipped_ = info.index;
+    last_skipped_ = info.index;
     skipped_ = true;
   } else {
     ++written_;
-    if (skipped_) write_bridge(before, true);
+    if (skipped_) write_bridge(before, true, out);
   }
   keep_ = keep;
+  out.layer(info, before);
 }
 
-void LayerExtractor::on_end_code(std::uint64_t, std::uint64_t, const MachineState& before) {
-  if (skipped_) write_bridge(before, false);
+void LayerExtractor::end_code(const EndCodeInfo& info, const MachineState& before, Emitter& out) {
+  if (skipped_) write_bridge(before, false, out);
   keep_ = true;
+  out.end_code(info, before);
 }
 
-void LayerExtractor::write_bridge(const MachineState& target, bool travel) {
-  write_line(last_skipped_ == first_skipped_
-                 ? fmt::format("; gc-layers: layer {} left out", first_skipped_)
-                 : fmt::format("; gc-layers: layers {}-{} left out", first_skipped_, last_skipped_));
+void LayerExtractor::write_bridge(const MachineState& target, bool travel, Emitter& out) {
+  out.insert(last_skipped_ == first_skipped_
+                 ? fmt::format("; {}layer {} left out", options_.note_prefix, first_skipped_)
+                 : fmt::format("; {}layers {}-{} left out", options_.note_prefix, first_skipped_, last_skipped_));
   skipped_ = false;
-  if (!target.relative_e) write_line(builder_.start("G92").word('E', target.position[kE], precision_.of('E')).view());
-  if (target.firmware_retracted != printed_fw_retracted_) write_line(target.firmware_retracted ? "G10" : "G11");
+  if (!target.relative_e) out.insert(builder_.start("G92").fixed('E', target.at(kE)).view());
+  if (target.firmware_retracted != printed_fw_retracted_) out.insert(target.firmware_retracted ? "G10" : "G11");
   if (!travel || target.relative_xyz || printed_relative_xyz_ || !target.known[kX] || !target.known[kY] ||
       !target.known[kZ])
     return;
-  int d = precision_.of('Z');
-  double top = std::max(target.position[kZ], printed_known_z_ ? printed_position_[kZ] : target.position[kZ]);
-  write_line(builder_.start("G0").word('Z', top + options_.lift_mm, d).word('F', options_.z_feedrate, 0).view());
-  write_line(builder_.start("G0")
-                 .word('X', target.position[kX], precision_.of('X'))
-                 .word('Y', target.position[kY], precision_.of('Y'))
-                 .word('F', options_.travel_feedrate, 0)
-                 .view());
-  write_line(builder_.start("G0").word('Z', target.position[kZ], d).word('F', options_.z_feedrate, 0).view());
-  if (target.feedrate > 0) write_line(builder_.start("G1").word('F', target.feedrate, precision_.of('F')).view());
+  // Above both heights: the last one printed and the one to come.
+  Fixed z = target.at(kZ);
+  Fixed top = printed_known_z_ ? std::max(z, Fixed::from_double(printed_position_[kZ])) : z;
+  Fixed lift = (top + Fixed::from_double(options_.lift_mm)).rounded(precision_.of('Z'));
+  const int fd = precision_.of('F');
+  out.insert(builder_.start("G0").fixed('Z', lift).word('F', options_.z_feedrate, fd).view());
+  out.insert(builder_.start("G0").fixed('X', target.at(kX)).fixed('Y', target.at(kY)).word('F', options_.travel_feedrate, fd).view());
+  out.insert(builder_.start("G0").fixed('Z', z).word('F', options_.z_feedrate, fd).view());
+  if (target.feedrate > 0) out.insert(builder_.start("G1").fixed('F', Fixed::from_double(target.feedrate)).view());
 }
 
-void LayerExtractor::on_line(const TrackedLine& t) {
-  if (!t.raw.ending.empty()) ending_ = t.raw.ending;
-  for (const Word& w : t.line)
-    if (w.has_value) precision_.observe(w.letter, w.decimals);
+void LayerExtractor::line(const TrackedLine& t, Emitter& out) {
   if (!keep_) return;
-  out_.write(t.raw.text);
-  out_.write(t.raw.ending);
+  out.pass(t);
   if (t.move.kind != MoveKind::None) {
     printed_position_ = t.state.position;
     printed_known_z_ = t.state.known[kZ];

@@ -5,6 +5,7 @@
 #include <string>
 #include <string_view>
 
+#include "gcode/core/fixed.hpp"
 #include "gcode/core/number.hpp"
 
 namespace gcode {
@@ -21,6 +22,15 @@ class LineBuilder {
     text_.push_back(' ');
     text_.push_back(letter);
     text_.append(buffer, format_number(value, decimals, buffer));
+    return *this;
+  }
+  // An exact decimal, written with all the digits it has (at most nine):
+  // a position or E coordinate the file is at, written back exactly.
+  LineBuilder& fixed(char letter, Fixed value, int decimals = Fixed::kDecimals) {
+    char buffer[kMaxNumberChars];
+    text_.push_back(' ');
+    text_.push_back(letter);
+    text_.append(buffer, value.format(decimals, buffer));
     return *this;
   }
   // A word whose value is copied as written (keeps the input's exact text).

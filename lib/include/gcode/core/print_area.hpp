@@ -15,14 +15,11 @@
 // the first pause reads a regular file's head and tail first (scan_file), and
 // on a pipe only what it has seen (the header, for Cura).
 #include <string>
+
+#include "gcode/core/geometry.hpp"
 #include <string_view>
 
 namespace gcode {
-
-struct Box2 {
-  double min_x = 0, min_y = 0, max_x = 0, max_y = 0;
-  bool contains(double x, double y) const { return x >= min_x && x <= max_x && y >= min_y && y <= max_y; }
-};
 
 struct PrintArea {
   bool has_bed = false;

@@ -1,8 +1,8 @@
 #pragma once
 // Pictures of layers seen from above, as SVG.
 //
-// A LayerDrawer collects the paths of the selected layers while the file
-// streams (fed from a LayerSink): extrusions by feature (;TYPE:) with their
+// A LayerDrawer (a report stage) collects the paths of the selected layers
+// while the file streams: extrusions by feature (;TYPE:) with their
 // width (;WIDTH: when the slicer writes it, else filament volume / (length x
 // layer height)), travel, retraction points, and the extrusions of the layer
 // below each selected one. Consecutive segments of the same style are merged
@@ -19,11 +19,11 @@
 #include <string_view>
 #include <vector>
 
+#include "gcode/core/geometry.hpp"
 #include "gcode/core/layer_tracker.hpp"
+#include "gcode/pipeline/stage.hpp"
 
 namespace gcode {
-
-using Polygon = std::vector<std::array<double, 2>>;
 
 struct DrawnPath {
   bool travel = false;
@@ -42,14 +42,14 @@ struct LayerDrawing {
   std::vector<float> retractions;  // x y pairs
 };
 
-class LayerDrawer {
+class LayerDrawer : public Stage {
  public:
   // `selected(layer)` says which layers to keep.
   explicit LayerDrawer(std::function<bool(int)> selected, double filament_diameter = 1.75);
 
-  void on_layer(const LayerInfo& layer);
-  void on_line(const TrackedLine& t);
-  void finish();
+  void layer(const LayerInfo& info, const MachineState& before, Emitter& out) override;
+  void line(const TrackedLine& t, Emitter& out) override;
+  void finish(Emitter& out) override;
 
   std::vector<LayerDrawing>& drawings() { return done_; }
 

@@ -1,13 +1,15 @@
 #pragma once
 // Per-layer figures for gc-layers: where each layer lies in the file (lines
 // and bytes), how much filament and path it holds, which features it prints,
-// and totals for the whole print. Fed from a LayerSink's callbacks.
+// and totals for the whole print. A report stage: it passes every line on.
 #include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "gcode/core/geometry.hpp"
 #include "gcode/core/layer_tracker.hpp"
+#include "gcode/pipeline/stage.hpp"
 
 namespace gcode {
 
@@ -26,25 +28,18 @@ struct LayerRow {
   std::vector<int> features;       // feature ids seen, in order of first use
 };
 
-struct Bounds {
-  std::array<double, 3> min{1e300, 1e300, 1e300};
-  std::array<double, 3> max{-1e300, -1e300, -1e300};
-  bool empty() const { return min[0] > max[0]; }
-  void add(double x, double y, double z);
-};
-
-class LayerTable {
+class LayerTable : public Stage {
  public:
   LayerTable();
-  void on_layer(const LayerInfo& info);
-  void on_end_code();
-  void on_line(const TrackedLine& t);
+  void layer(const LayerInfo& info, const MachineState& before, Emitter& out) override;
+  void end_code(const EndCodeInfo& info, const MachineState& before, Emitter& out) override;
+  void line(const TrackedLine& t, Emitter& out) override;
 
   const std::vector<LayerRow>& layers() const { return layers_; }
   const LayerRow& start_code() const { return start_; }
   const LayerRow& end_code() const { return end_; }
   bool has_end_code() const { return has_end_; }
-  const Bounds& extrusion_bounds() const { return bounds_; }
+  const Box3& extrusion_bounds() const { return bounds_; }
   // Net filament over the whole file, start and end code included.
   double total_filament() const { return total_filament_; }
   // Filament pushed by extruding moves inside the layers: what slicers report
@@ -60,7 +55,7 @@ class LayerTable {
   LayerRow end_;
   bool has_end_ = false;
   std::vector<LayerRow> layers_;
-  Bounds bounds_;
+  Box3 bounds_;
   double total_filament_ = 0;
   std::uint64_t total_lines_ = 0;
   std::uint64_t total_bytes_ = 0;

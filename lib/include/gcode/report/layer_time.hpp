@@ -1,11 +1,12 @@
 #pragma once
-// Print time per layer: an Estimator fed from a LayerTracker's lines, its
-// time booked to the start code, each layer, and the end code.
+// Print time per layer: an Estimator fed with the pipeline's lines, its time
+// booked to the start code, each layer, and the end code. A report stage.
 #include <cstdint>
 #include <vector>
 
 #include "gcode/report/estimator.hpp"
 #include "gcode/core/layer_tracker.hpp"
+#include "gcode/pipeline/stage.hpp"
 
 namespace gcode {
 
@@ -18,16 +19,15 @@ struct LayerTimes {
   double cumulative(int index) const;
 };
 
-class LayerTimer : private TimeSink {
+class LayerTimer : public Stage, private TimeSink {
  public:
   explicit LayerTimer(const EstimatorOptions& options = {});
   LayerTimer(const LayerTimer&) = delete;
   LayerTimer& operator=(const LayerTimer&) = delete;
 
-  // Call from LayerSink::on_line for every line, in order.
-  void on_line(const TrackedLine& t);
-  // End of input.
-  void finish();
+  void line(const TrackedLine& t, Emitter& out) override;
+  // The end of the input: the moves still in the look-ahead are timed.
+  void finish(Emitter& out) override;
 
   const LayerTimes& times() const { return times_; }
   const Estimator& estimator() const { return estimator_; }

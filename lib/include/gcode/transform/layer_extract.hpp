@@ -1,15 +1,15 @@
 #pragma once
-// Writes the start code, a chosen set of layers and the end code as G-code a
+// Keeps the start code, a chosen set of layers and the end code, as G-code a
 // printer can run: where layers are left out, a short bridge keeps the E
 // coordinate continuous (G92 E in absolute mode) and travels safely into the
 // next chosen layer (lift above both heights, move in XY, go down to the
 // layer's Z, restore the feed rate). With every layer chosen nothing is
 // inserted, so the output is the input byte for byte.
 #include <functional>
+#include <string>
 
-#include "gcode/core/layer_tracker.hpp"
 #include "gcode/core/line_builder.hpp"
-#include "gcode/core/output_buffer.hpp"
+#include "gcode/pipeline/stage.hpp"
 
 namespace gcode {
 
@@ -17,29 +17,28 @@ struct ExtractOptions {
   double lift_mm = 1.0;             // clearance above the higher of the two Z
   double travel_feedrate = 3000;    // mm/min for the bridge's moves
   double z_feedrate = 600;
+  std::string note_prefix;          // starts the bridge's comment ("gc-layers: ")
 };
 
-class LayerExtractor : public LayerSink {
+class LayerExtractor : public Stage {
  public:
   using Selector = std::function<bool(const LayerInfo&)>;
-  LayerExtractor(OutputBuffer& out, Selector selected, ExtractOptions options = {});
+  // `precision`: the input's decimals (Pipeline::precision) for the bridge.
+  LayerExtractor(Selector selected, const Precision& precision, ExtractOptions options = {});
 
-  void on_layer(const LayerInfo& layer, const MachineState& before) override;
-  void on_end_code(std::uint64_t first_line, std::uint64_t offset, const MachineState& before) override;
-  void on_line(const TrackedLine& t) override;
+  void layer(const LayerInfo& info, const MachineState& before, Emitter& out) override;
+  void end_code(const EndCodeInfo& info, const MachineState& before, Emitter& out) override;
+  void line(const TrackedLine& t, Emitter& out) override;
 
   int layers_written() const { return written_; }
 
  private:
-  void write_bridge(const MachineState& target, bool travel);
-  void write_line(std::string_view text);
+  void write_bridge(const MachineState& target, bool travel, Emitter& out);
 
-  OutputBuffer& out_;
   Selector selected_;
+  const Precision& precision_;
   ExtractOptions options_;
   LineBuilder builder_;
-  Precision precision_;
-  std::string_view ending_ = "\n";  // the input's line ending, for inserted lines
   bool keep_ = true;
   bool skipped_ = false;     // layers were left out since the last written line
   int first_skipped_ = 0;
