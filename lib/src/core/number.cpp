@@ -76,6 +76,21 @@ bool parse_number(std::string_view text, double& value) {
   return parse_slow(rest, value);
 }
 
+bool parse_number_list(std::string_view text, std::vector<double>& out) {
+  out.clear();
+  for (;;) {
+    std::size_t comma = text.find(',');
+    std::string_view item = text.substr(0, comma);
+    while (!item.empty() && item.front() == ' ') item.remove_prefix(1);
+    while (!item.empty() && item.back() == ' ') item.remove_suffix(1);
+    double v = 0;
+    if (!parse_number(item, v) || !std::isfinite(v)) return false;
+    out.push_back(v);
+    if (comma == std::string_view::npos) return true;
+    text.remove_prefix(comma + 1);
+  }
+}
+
 int decimals_of(std::string_view number_text) {
   // A plain loop: numbers are a few characters, and find() costs a memchr
   // call per word (gc-layers asks for every word of every line).

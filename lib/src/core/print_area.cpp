@@ -226,4 +226,14 @@ PrintArea scan_text_limits(std::string_view text) {
   return scanner.limits();
 }
 
+bool parse_bed_size(std::string_view text, Box2& bed) {
+  std::size_t x = text.find_first_of("xX");
+  double w = 0, d = 0;
+  if (x == std::string_view::npos || !parse_number(text.substr(0, x), w) || !parse_number(text.substr(x + 1), d) ||
+      !(w > 0) || !(d > 0) || !std::isfinite(w) || !std::isfinite(d))
+    return false;
+  bed = Box2{0, 0, w, d};
+  return true;
+}
+
 }  // namespace gcode

@@ -10,6 +10,7 @@
 #include "gcode/core/arc.hpp"
 #include "gcode/report/estimator.hpp"
 #include "gcode/core/number.hpp"
+#include "gcode/core/placeholders.hpp"
 
 namespace gcode {
 
@@ -259,15 +260,14 @@ std::string feature_color(std::string_view name) {
 }
 
 bool has_layer_placeholder(std::string_view pattern) {
-  return pattern.find("{}") != std::string_view::npos || pattern.find("%d") != std::string_view::npos;
+  return has_placeholder(pattern, "") || has_placeholder(pattern, "layer") || pattern.find("%d") != std::string_view::npos;
 }
 
 std::string expand_layer_pattern(std::string_view pattern, int layer) {
-  std::string out(pattern);
-  for (std::string_view ph : {std::string_view("{}"), std::string_view("%d")}) {
-    std::size_t at = out.find(ph);
-    if (at != std::string::npos) return out.replace(at, ph.size(), std::to_string(layer));
-  }
+  std::string number = std::to_string(layer);
+  std::string out = expand_placeholders(pattern, {{"", number}, {"layer", number}});
+  // printf style, as some users write it.
+  if (std::size_t at = out.find("%d"); at != std::string::npos) out.replace(at, 2, number);
   return out;
 }
 

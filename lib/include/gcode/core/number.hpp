@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
+#include <vector>
 
 namespace gcode {
 
@@ -18,6 +19,10 @@ namespace gcode {
 // missing leading zero (".5") or missing fraction ("5."), and a C-style
 // exponent. Returns false for anything else, including an empty text.
 bool parse_number(std::string_view text, double& value);
+
+// Parses "1.5,2,10" (no spaces needed; empty items are an error) into
+// finite numbers. Returns false when an item is not a number.
+bool parse_number_list(std::string_view text, std::vector<double>& out);
 
 // Digits after the decimal point in a number as written ("0.125" -> 3, "5" -> 0).
 int decimals_of(std::string_view number_text);

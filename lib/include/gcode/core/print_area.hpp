@@ -51,6 +51,10 @@ class PrintAreaScanner {
   std::string cura_settings_;  // ;SETTING_3 payloads, joined
 };
 
+// "220x220" (or "220X220"): a bed of that width and depth from 0,0.
+// Returns false when the text is not two sizes above 0.
+bool parse_bed_size(std::string_view text, Box2& bed);
+
 // Reads the first and last part of a regular file (pread, the file offset is
 // left alone) and scans them. Returns false when `fd` is not a regular file.
 bool scan_file_limits(int fd, PrintArea& limits);

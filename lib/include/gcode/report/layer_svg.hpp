@@ -80,7 +80,7 @@ std::string layer_svg(const LayerDrawing& drawing, const SvgOptions& options);
 // `columns` 0 = about square.
 std::string layer_sheet_svg(const std::vector<LayerDrawing>& drawings, const SvgOptions& options, int columns = 0);
 
-// "layer-{}.svg" or "layer-%d.svg" with the layer number; a path without a
+// "layer-{}.svg", "layer-{layer}.svg" or "layer-%d.svg" with the layer number (placeholders.hpp); a path without a
 // placeholder is returned as it is.
 std::string expand_layer_pattern(std::string_view pattern, int layer);
 bool has_layer_placeholder(std::string_view pattern);

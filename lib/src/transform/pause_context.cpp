@@ -1,0 +1,62 @@
+#include "gcode/transform/pause_context.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace gcode {
+
+namespace {
+
+std::string mm(double v) {
+  char b[kMaxNumberChars];
+  return std::string(number_text(v, 3, b));
+}
+
+}  // namespace
+
+void PauseContext::observe(const TrackedLine& t) {
+  retraction_.observe(t.move);
+  if (!t.move.extruding) return;
+  top_z_ = std::max(top_z_, t.move.end[kZ]);
+  if (t.region == Region::Layer) {
+    printed_.add(t.move.start[kX], t.move.start[kY]);
+    printed_.add(t.move.end[kX], t.move.end[kY]);
+  }
+}
+
+void ParkRules::check() const {
+  if (!given && !area.has_bed)
+    throw std::runtime_error(
+        "the file does not say how big the bed is, so the park position is unknown: "
+        "give --park X,Y (or --bed WIDTHxDEPTH)");
+}
+
+Box2 ParkRules::print_box(const PauseContext& context) const {
+  Box2 box;
+  if (area.has_print_box) box.add(area.print_box);
+  box.add(context.printed());
+  return box;
+}
+
+void ParkRules::place(const PauseContext& context, const Precision& precision, PauseConfig& c) const {
+  check();
+  Box2 box = print_box(context);
+  if (given) {
+    c.park_x = x;
+    c.park_y = y;
+  } else {
+    // The back of the bed, centred on the print (background.md §1).
+    c.park_x = !box.empty() ? box.centre().x : area.bed.centre().x;
+    c.park_y = area.bed.max_y - 10;
+  }
+  // A park position needs no more decimals than the file's own.
+  c.park_x = Fixed::from_double(c.park_x).rounded(precision.of('X')).to_double();
+  c.park_y = Fixed::from_double(c.park_y).rounded(precision.of('Y')).to_double();
+  bool pushes = c.reload > 0 || c.purge > 0 || c.prime > 0;
+  if (pushes && !box.empty() && box.contains(c.park_x, c.park_y))
+    throw std::runtime_error("the park position X" + mm(c.park_x) + " Y" + mm(c.park_y) + " is above the print (X " +
+                             mm(box.min_x) + ".." + mm(box.max_x) + ", Y " + mm(box.min_y) + ".." + mm(box.max_y) +
+                             "): purging there would drop a blob on it; choose --park outside the print");
+}
+
+}  // namespace gcode
