@@ -21,7 +21,7 @@
 #include "gcode/serial/virtual_link.hpp"
 #include "gcode/serial/virtual_printer.hpp"
 #include "gcode/cli/io.hpp"
-#include "gcode/version.hpp"
+#include "gcode/cli/tool.hpp"
 
 namespace {
 
@@ -151,14 +151,15 @@ int run(const Options& o, const VirtualPrinterConfig& vconfig) {
 
 int main(int argc, char** argv) {
   Options o;
-  CLI::App app{
+  gcode::cli::Tool tool(
+      "gc-send",
       "gc-send: stream G-code to a printer over a serial port, keeping its buffers full without overrunning\n"
       "them. Comments, blank lines and host commands (@pause) are not sent; every line is numbered and\n"
       "checksummed, resent on request, and the end waits for M400. Ctrl-C stops sending; Ctrl-C twice sends\n"
       "M112. The default port is the built-in virtual printer:\n"
       "  gc-subdivide --max 0.2 part.gcode | gc-send --port /dev/ttyACM0 --baud 250000\n"
-      "  gc-send --port virtual:time-scale=20 examples/cube.gcode",
-      "gc-send"};
+      "  gc-send --port virtual:time-scale=20 examples/cube.gcode");
+  CLI::App& app = tool.app();
   app.add_option("FILE", o.file, "G-code file; - or absent: standard input");
   app.add_option("-p,--port", o.port,
                  "Serial port or pseudo-terminal path, or virtual[:key=value,...] (default: virtual)")
@@ -178,26 +179,18 @@ int main(int argc, char** argv) {
   app.add_flag("--list-ports", o.list_ports, "List candidate serial ports and exit");
   app.add_flag("-q,--quiet", o.quiet, "Only errors on standard error (no summary)");
   app.add_flag("-v,--verbose", o.verbose, "Also report resends, printer messages and host commands; twice: every line both ways");
-  app.set_version_flag("--version", std::string("gc-send ") + gcode::kVersion);
   VirtualPrinterConfig vconfig;
-  try {
-    app.parse(argc, argv);
-    if (o.baud <= 0) throw std::invalid_argument("--baud must be above 0");
-    if (o.queue < 1) throw std::invalid_argument("--queue must be at least 1");
-    if (o.rx_buffer < 16) throw std::invalid_argument("--rx-buffer must be at least 16");
-    if (!(o.timeout > 0)) throw std::invalid_argument("--timeout must be above 0");
-    if (o.max_timeouts < 0) throw std::invalid_argument("--max-timeouts must be 0 or more");
+  tool.check([&] {
+    using gcode::cli::UsageError;
+    if (o.baud <= 0) throw UsageError("--baud must be above 0");
+    if (o.queue < 1) throw UsageError("--queue must be at least 1");
+    if (o.rx_buffer < 16) throw UsageError("--rx-buffer must be at least 16");
+    if (!(o.timeout > 0)) throw UsageError("--timeout must be above 0");
+    if (o.max_timeouts < 0) throw UsageError("--max-timeouts must be 0 or more");
     if (is_virtual(o.port) && o.port.size() > kVirtual.size())
       parse_virtual_options(std::string_view(o.port).substr(kVirtual.size() + 1), vconfig);
     if (is_virtual(o.port) && app.count("--baud") > 0 && o.port.find("baud=") == std::string::npos)
       vconfig.baud = o.baud;
-  } catch (const std::invalid_argument& e) {
-    std::fprintf(stderr, "gc-send: %s\n", e.what());
-    return 2;
-  } catch (const CLI::ParseError& e) {
-    int code = app.exit(e);
-    return code == 0 ? 0 : 2;
-  }
-  if (o.list_ports) return list_ports();
-  return gcode::run_tool("gc-send", [&] { return run(o, vconfig); });
+  });
+  return tool.run(argc, argv, [&] { return o.list_ports ? list_ports() : run(o, vconfig); });
 }

@@ -18,7 +18,7 @@
 #include "gcode/serial/virtual_link.hpp"
 #include "gcode/serial/virtual_printer.hpp"
 #include "gcode/cli/io.hpp"
-#include "gcode/version.hpp"
+#include "gcode/cli/tool.hpp"
 
 namespace {
 
@@ -76,13 +76,14 @@ int run(const Options& o, const VirtualPrinterConfig& config) {
 int main(int argc, char** argv) {
   Options o;
   VirtualPrinterConfig c;
-  CLI::App app{
+  gcode::cli::Tool tool(
+      "gc-virtual-printer",
       "gc-virtual-printer: a simulated Marlin printer on a pseudo-terminal. PATH becomes a symlink to the\n"
       "pty; connect any host to it. It models the link's byte rate, the RX buffer (overruns lose bytes), the\n"
       "command queue, the planner, heating, Marlin's checksum/line-number errors and Resend replies, and can\n"
       "inject faults. Runs until interrupted:\n"
-      "  gc-virtual-printer --link /tmp/printer --time-scale 20 & gc-send --port /tmp/printer part.gcode",
-      "gc-virtual-printer"};
+      "  gc-virtual-printer --link /tmp/printer --time-scale 20 & gc-send --port /tmp/printer part.gcode");
+  CLI::App& app = tool.app();
   app.add_option("--link", o.link, "Path of the symlink to create for the pseudo-terminal")
       ->type_name("PATH")
       ->required();
@@ -103,20 +104,12 @@ int main(int argc, char** argv) {
   app.add_option("--log", o.log, "Write every executed command: time, N, X, Y, Z, E, command (tab-separated)")
       ->type_name("FILE");
   app.add_flag("-q,--quiet", o.quiet, "No messages on standard error");
-  app.set_version_flag("--version", std::string("gc-virtual-printer ") + gcode::kVersion);
-  try {
-    app.parse(argc, argv);
+  tool.check([&] {
     std::string opts;
     for (const std::string& f : o.faults) opts += f + ",";
     parse_virtual_options(opts, c);
     if (c.baud < 50 || c.queue < 1 || c.rx_buffer < 16 || c.planner < 1 || !(c.time_scale > 0))
-      throw std::invalid_argument("--baud, --queue, --rx-buffer, --planner and --time-scale need sensible values");
-  } catch (const std::invalid_argument& e) {
-    std::fprintf(stderr, "gc-virtual-printer: %s\n", e.what());
-    return 2;
-  } catch (const CLI::ParseError& e) {
-    int code = app.exit(e);
-    return code == 0 ? 0 : 2;
-  }
-  return gcode::run_tool("gc-virtual-printer", [&] { return run(o, c); });
+      throw gcode::cli::UsageError("--baud, --queue, --rx-buffer, --planner and --time-scale need sensible values");
+  });
+  return tool.run(argc, argv, [&] { return run(o, c); });
 }

@@ -108,18 +108,4 @@ void OutputFile::commit() {
   }
 }
 
-int run_tool(const char* name, const std::function<int()>& body) {
-  try {
-    return body();
-  } catch (const BrokenPipe&) {
-    // Die the way cat does when `| head` closes the pipe: by SIGPIPE.
-    std::signal(SIGPIPE, SIG_DFL);
-    std::raise(SIGPIPE);
-    return 141;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "%s: %s\n", name, e.what());
-    return 1;
-  }
-}
-
 }  // namespace gcode

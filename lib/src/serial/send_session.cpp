@@ -7,6 +7,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <system_error>
 
 #include <fmt/format.h>
 
@@ -16,7 +17,15 @@
 namespace gcode::serial {
 
 SendSession::SendSession(EventLoop& loop, Sender& sender, int input_fd, int port_fd, Diagnostics& diagnostics)
-    : loop_(loop), sender_(sender), input_fd_(input_fd), port_fd_(port_fd), diag_(diagnostics), tracker_(*this, markers_) {
+    : loop_(loop),
+      sender_(sender),
+      input_fd_(input_fd),
+      port_fd_(port_fd),
+      diag_(diagnostics),
+      // Small reads: the sender takes lines as the printer needs them, and
+      // stages before it should not run far ahead of the print.
+      pipeline_(markers_, PipelineOptions{.layers = true, .block_size = 16384}) {
+  pipeline_.add(*this);
   set_nonblocking(port_fd_);
   sigset_t mask;
   sigemptyset(&mask);
@@ -52,7 +61,8 @@ void SendSession::run() {
   if (!loop_.stopped()) loop_.run();
 }
 
-void SendSession::on_line(const TrackedLine& t) {
+void SendSession::line(const TrackedLine& t, Emitter&) {
+  ++input_lines_;
   const Line& line = t.line;
   if (line.kind == CommandKind::None) return;  // blank or comment only
   if (line.kind == CommandKind::Host) {
@@ -71,36 +81,15 @@ void SendSession::on_line(const TrackedLine& t) {
 }
 
 void SendSession::read_input() {
-  char buf[16384];
-  ssize_t n = ::read(input_fd_, buf, sizeof buf);
-  if (n < 0) {
-    if (errno == EINTR || errno == EAGAIN) return;
-    throw std::runtime_error(fmt::format("cannot read the input: {}", std::strerror(errno)));
+  bool more = true;
+  try {
+    more = pipeline_.read_some(input_fd_);
+  } catch (const std::system_error& e) {
+    if (e.code().value() == EAGAIN) return;
+    throw std::runtime_error(fmt::format("cannot read the input: {}", std::strerror(e.code().value())));
   }
-  if (n > 0) input_.append(buf, static_cast<std::size_t>(n));
-  // Split complete lines; keep a partial last line for the next read.
-  std::size_t pos = 0;
-  for (;;) {
-    std::size_t nl = input_.find('\n', pos);
-    if (nl == std::string::npos) {
-      if (n > 0 || pos == input_.size()) break;
-      nl = input_.size();  // the end of input: a last line without newline
-    }
-    std::size_t text_end = nl;
-    std::string_view ending = nl < input_.size() ? std::string_view("\n") : std::string_view();
-    if (text_end > pos && input_[text_end - 1] == '\r') {
-      --text_end;
-      ending = "\r\n";
-    }
-    RawLine raw{std::string_view(input_).substr(pos, text_end - pos), ending, ++input_lines_, input_offset_ + pos};
-    tracker_.push(raw);
-    pos = nl < input_.size() ? nl + 1 : nl;
-  }
-  input_offset_ += pos;
-  input_.erase(0, pos);
-  if (n == 0) {
+  if (!more) {
     input_done_ = true;
-    tracker_.finish();
     sender_.end_of_input();
     loop_.set_events(input_watch_, 0);
     loop_.remove_fd(input_watch_);

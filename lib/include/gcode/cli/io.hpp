@@ -2,7 +2,6 @@
 // The input and output conventions every gc tool shares: FILE or '-' for
 // stdin, -o FILE, and -i/--in-place (write a temp file beside FILE, rename it
 // over FILE only when the tool succeeded, as slicer post-processing hooks need).
-#include <functional>
 #include <string>
 
 namespace gcode {
@@ -45,10 +44,5 @@ class OutputFile {
   std::string temp_;
   std::string target_;
 };
-
-// Runs a tool's body and turns what escapes it into the conventions: a
-// message "NAME: ..." and exit status 1 for errors, a quiet SIGPIPE death
-// when the reader of our output went away (like cat | head).
-int run_tool(const char* name, const std::function<int()>& body);
 
 }  // namespace gcode

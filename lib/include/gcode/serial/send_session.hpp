@@ -1,7 +1,8 @@
 #pragma once
-// gc-send's pipeline in one event loop: G-code from the input is split into
-// lines, given layers (layer_tracker.hpp), stripped of comments and handed to
-// the Sender, whose bytes go to the port; the port's lines go back to the
+// gc-send's pipeline in one event loop: G-code from the input runs through
+// the library's pipeline (pipeline.hpp: lines, state, layers, and any stages
+// a caller adds), whose last stage strips comments and hands commands to the
+// Sender; the Sender's bytes go to the port, the port's lines back to the
 // Sender. Ctrl-C once stops sending and waits for the lines in flight;
 // Ctrl-C twice sends M112 at once.
 #include <cstdint>
@@ -9,13 +10,13 @@
 
 #include "gcode/core/diagnostics.hpp"
 #include "gcode/core/layer_marker.hpp"
-#include "gcode/core/layer_tracker.hpp"
+#include "gcode/pipeline/pipeline.hpp"
 #include "gcode/serial/event_loop.hpp"
 #include "gcode/serial/sender.hpp"
 
 namespace gcode::serial {
 
-class SendSession : private LayerSink {
+class SendSession : private Stage {
  public:
   // Does not own the descriptors. `port_fd` is made non-blocking.
   SendSession(EventLoop& loop, Sender& sender, int input_fd, int port_fd, Diagnostics& diagnostics);
@@ -27,10 +28,12 @@ class SendSession : private LayerSink {
   void run();
   std::uint64_t host_commands() const { return host_commands_; }
   std::uint64_t input_lines() const { return input_lines_; }
-  int layers() const { return tracker_.layer_count(); }
+  int layers() const { return pipeline_.tracker().layer_count(); }
 
  private:
-  void on_line(const TrackedLine& line) override;
+  // The last stage: what reaches it is sent.
+  void line(const TrackedLine& t, Emitter& out) override;
+  bool reads_state() const override { return false; }
   void read_input();
   void read_port();
   void flush_port();
@@ -44,9 +47,7 @@ class SendSession : private LayerSink {
   int signal_fd_ = -1;
   Diagnostics& diag_;
   LayerMarkers markers_;
-  LayerTracker tracker_;
-  std::string input_;         // bytes read, not yet split (a partial last line)
-  std::uint64_t input_offset_ = 0;
+  Pipeline pipeline_;
   std::uint64_t input_lines_ = 0;
   std::uint64_t host_commands_ = 0;
   bool input_done_ = false;
