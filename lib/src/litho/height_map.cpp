@@ -53,6 +53,15 @@ HeightMap::HeightMap(GreyImage image, const HeightMapOptions& options)
                     height_));
 }
 
+Point HeightMap::place(double s, double depth, double center_x, double center_y) const {
+  if (closed()) {
+    const double radius = base_radius();
+    const double angle = s / radius;
+    return {center_x + (radius + depth) * std::cos(angle), center_y + (radius + depth) * std::sin(angle)};
+  }
+  return {center_x - length_ / 2 + s, center_y - options_.max_thickness / 2 + depth};
+}
+
 bool HeightMap::image_uv(double s, double z, double& u, double& v) const {
   const double b = options_.border;
   z = std::clamp(z, 0.0, height_);

@@ -87,13 +87,7 @@ LithophanePlanner::LithophanePlanner(const HeightMap& map, const LithoOptions& o
 }
 
 Point LithophanePlanner::point_at(double s, double depth) const {
-  if (map_.closed()) {
-    const double radius = map_.base_radius();
-    const double angle = s / radius;
-    return {options_.center_x + (radius + depth) * std::cos(angle),
-            options_.center_y + (radius + depth) * std::sin(angle)};
-  }
-  return {options_.center_x - map_.length() / 2 + s, options_.center_y - map_.max_thickness() / 2 + depth};
+  return map_.place(s, depth, options_.center_x, options_.center_y);
 }
 
 LithophanePlanner::Column LithophanePlanner::column(double s, double z) const {

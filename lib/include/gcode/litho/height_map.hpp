@@ -27,6 +27,12 @@ namespace gcode::litho {
 
 enum class LithoShape : std::uint8_t { Flat, Cylinder };
 
+// A position on the bed, mm.
+struct Point {
+  double x = 0;
+  double y = 0;
+};
+
 struct HeightMapOptions {
   LithoShape shape = LithoShape::Flat;
   double width = 100;        // flat: plate width in mm (0 = from height and aspect)
@@ -63,6 +69,11 @@ class HeightMap {
   double thickness(double s, double z) const;
   // The share of the thickness range at (s, z), 0..1 (1 in the border).
   double fraction(double s, double z) const;
+  // Bed XY of the point `depth` mm out from the base at `s`, for a
+  // lithophane standing on (center_x, center_y): a flat plate's base face
+  // lies max_thickness / 2 in front of the centre line (so the plate's
+  // bounding box is centred), a cylinder's axis is on the centre.
+  Point place(double s, double depth, double center_x, double center_y) const;
   // Where (s, z) falls on the picture: u 0..1 left to right, v 0..1 top to
   // bottom; false in the border.
   bool image_uv(double s, double z, double& u, double& v) const;

@@ -72,11 +72,6 @@ struct LithoOptions {
 
 enum class PathRole : std::uint8_t { WallOuter, WallInner, Fill };
 
-struct Point {
-  double x = 0;
-  double y = 0;
-};
-
 // One extruding move: from the previous piece's end (or the path's start) to `to`.
 struct Piece {
   Point to;
