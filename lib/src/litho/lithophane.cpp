@@ -97,6 +97,27 @@ LithophanePlanner::Column LithophanePlanner::column(double s, double z) const {
   return {t, t / 2, 0};
 }
 
+// A piece that continues the previous one in a straight line at the same
+// width and speed is the same bead: it extends it (an inner wall along a
+// flat base, passes over a uniform part), which keeps the G-code short.
+void LithophanePlanner::push_piece(Path& path, const Piece& piece) {
+  if (!path.pieces.empty()) {
+    Piece& last = path.pieces.back();
+    const Point from = path.pieces.size() > 1 ? path.pieces[path.pieces.size() - 2].to : path.start;
+    const double ax = last.to.x - from.x, ay = last.to.y - from.y;
+    const double bx = piece.to.x - last.to.x, by = piece.to.y - last.to.y;
+    const double along = ax * bx + ay * by;
+    const double off_line = std::abs(ax * by - ay * bx) / std::hypot(ax, ay);  // distance of the new end from the line
+    if (along > 0 && off_line < 1e-6 && std::abs(piece.width - last.width) <= 1e-9 * last.width &&
+        std::abs(piece.speed - last.speed) <= 1e-9 * last.speed && piece.clamped == last.clamped) {
+      last.to = piece.to;
+      last.volume += piece.volume;
+      return;
+    }
+  }
+  path.pieces.push_back(piece);
+}
+
 double LithophanePlanner::clamp_speed(double speed, Piece& piece, LayerStats& stats) const {
   if (speed > options_.max_speed) {
     piece.clamped = true;
@@ -130,7 +151,7 @@ bool LithophanePlanner::add_strip(const Strip& st, double rate, Path& path, Laye
   piece.width = area / length;
   piece.volume = area * options_.layer_height;
   piece.speed = clamp_speed(rate / (piece.width * options_.layer_height), piece, stats);
-  path.pieces.push_back(piece);
+  push_piece(path, piece);
   stats.band_area += area;
   stats.volume += piece.volume;
   ++stats.pieces;
@@ -147,7 +168,7 @@ void LithophanePlanner::add_cap(Point from, Point to, double rate, Path& path, L
   piece.width = options_.line_width;
   piece.volume = piece.width * length * options_.layer_height;
   piece.speed = clamp_speed(rate / (piece.width * options_.layer_height), piece, stats);
-  path.pieces.push_back(piece);
+  push_piece(path, piece);
   stats.band_area += piece.width * length;
   stats.volume += piece.volume;
   ++stats.pieces;

@@ -90,7 +90,7 @@ struct Path {
 struct LayerStats {
   double band_area = 0;   // mm2 the pieces' strips cover (the layer's cross-section as sampled)
   double volume = 0;      // mm3 of all pieces
-  std::uint32_t pieces = 0;
+  std::uint32_t pieces = 0;        // as planned, before straight runs of equal pieces are joined
   std::uint32_t clamped_fast = 0;  // pieces slowed to max speed
   std::uint32_t clamped_slow = 0;  // pieces sped up to min speed
   std::uint32_t fill_pieces = 0;
@@ -135,6 +135,7 @@ class LithophanePlanner {
   };
   Column column(double s, double z) const;
   double clamp_speed(double speed, Piece& piece, LayerStats& stats) const;
+  static void push_piece(Path& path, const Piece& piece);
   bool add_strip(const Strip& strip, double rate, Path& path, LayerStats& stats) const;
   void add_cap(Point from, Point to, double rate, Path& path, LayerStats& stats) const;
   void plan_fill(const std::vector<double>& s, const std::vector<Column>& cols, double rate, LithoLayer& out) const;
