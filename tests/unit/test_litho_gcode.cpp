@@ -195,7 +195,7 @@ Measured prove(const char* name, const HeightMap& map, double gap_step) {
 
 }  // namespace
 
-TEST_CASE("flat gradient lithophane deposits each layer's band volume with no gaps at a constant rate",
+TEST_CASE("litho G-code: flat gradient lithophane deposits each layer's band volume with no gaps at a constant rate",
           "[litho][gcode]") {
   const Measured m = prove("flat gradient", HeightMap(littest::gradient(64, 32), plate(40)), 0.11);
   CHECK(m.layers == 100);
@@ -203,14 +203,14 @@ TEST_CASE("flat gradient lithophane deposits each layer's band volume with no ga
   CHECK(m.worst_surface <= 0.05);
 }
 
-TEST_CASE("cylinder gradient lithophane deposits each layer's band volume with no gaps at a constant rate",
+TEST_CASE("litho G-code: cylinder gradient lithophane deposits each layer's band volume with no gaps at a constant rate",
           "[litho][gcode]") {
   const Measured m = prove("cylinder gradient", HeightMap(littest::gradient(64, 16), cylinder(30)), 0.23);
   CHECK(m.worst_gap <= 0.05);
   CHECK(m.worst_surface <= 0.05);
 }
 
-TEST_CASE("hard edged strokes keep the volume and the rate of unclamped pieces", "[litho][gcode]") {
+TEST_CASE("litho G-code: hard edged strokes keep the volume and the rate of unclamped pieces", "[litho][gcode]") {
   const Measured m = prove("flat strokes", HeightMap(littest::strokes(120, 60), plate(40)), 0.11);
   // On an edge the band's depth jumps 2.2 mm within one pixel (0.33 mm);
   // pieces are cut to 0.05 mm there, and a bead has one width per piece, so
@@ -219,7 +219,7 @@ TEST_CASE("hard edged strokes keep the volume and the rate of unclamped pieces",
   CHECK(m.worst_gap <= 0.15);
 }
 
-TEST_CASE("the G-code has Cura layer markers and types and every parameter in its header", "[litho][gcode]") {
+TEST_CASE("litho G-code: the G-code has Cura layer markers and types and every parameter in its header", "[litho][gcode]") {
   const HeightMap map(littest::gradient(64, 32), plate(40));
   const LithophanePlanner planner(map, LithoOptions{});
   LithoGcodeOptions options;
@@ -246,7 +246,7 @@ TEST_CASE("the G-code has Cura layer markers and types and every parameter in it
   CHECK(r.retractions > 0);
 }
 
-TEST_CASE("numbers are written with 3 decimals for XYZ 5 for E and whole F", "[litho][gcode]") {
+TEST_CASE("litho G-code: numbers are written with 3 decimals for XYZ 5 for E and whole F", "[litho][gcode]") {
   const HeightMap map(littest::gradient(16, 8), plate(20));
   const LithophanePlanner planner(map, LithoOptions{});
   const Generated g = generate(planner);
@@ -264,7 +264,7 @@ TEST_CASE("numbers are written with 3 decimals for XYZ 5 for E and whole F", "[l
   }
 }
 
-TEST_CASE("each bead has its planned width and E rounding is carried", "[litho][gcode]") {
+TEST_CASE("litho G-code: each bead has its planned width and E rounding is carried", "[litho][gcode]") {
   const HeightMap map(littest::gradient(64, 32), plate(40));
   const LithophanePlanner planner(map, LithoOptions{});
   const Generated g = generate(planner);
@@ -293,7 +293,7 @@ TEST_CASE("each bead has its planned width and E rounding is carried", "[litho][
   std::printf("litho widths: worst relative width error from E rounding %.4f %%\n", worst_width * 100);
 }
 
-TEST_CASE("output comes one layer at a time", "[litho][gcode]") {
+TEST_CASE("litho G-code: output comes one layer at a time", "[litho][gcode]") {
   const HeightMap map(littest::gradient(64, 32), plate(40));
   const LithophanePlanner planner(map, LithoOptions{});
   const Generated g = generate(planner);
@@ -304,7 +304,7 @@ TEST_CASE("output comes one layer at a time", "[litho][gcode]") {
   CHECK(g.stats.bytes == g.text.size());
 }
 
-TEST_CASE("built-in start and end code heat home purge and switch off", "[litho][gcode]") {
+TEST_CASE("litho G-code: built-in start and end code heat home purge and switch off", "[litho][gcode]") {
   const HeightMap map(littest::gradient(16, 8), plate(20));
   const LithophanePlanner planner(map, LithoOptions{});
   LithoGcodeOptions options;
@@ -320,7 +320,7 @@ TEST_CASE("built-in start and end code heat home purge and switch off", "[litho]
   CHECK(end.position[gcode::kZ] > planner.layer_z(planner.layer_count() - 1) + 9);
 }
 
-TEST_CASE("user start and end code are used as given and the modes are set after them", "[litho][gcode]") {
+TEST_CASE("litho G-code: user start and end code are used as given and the modes are set after them", "[litho][gcode]") {
   const HeightMap map(littest::gradient(16, 8), plate(20));
   const LithophanePlanner planner(map, LithoOptions{});
   LithoGcodeOptions options;
@@ -334,7 +334,7 @@ TEST_CASE("user start and end code are used as given and the modes are set after
   CHECK_THROWS_WITH(generate(planner, options), Catch::Contains("--retract-speed"));
 }
 
-TEST_CASE("ImageMagick's wizard and rose pictures print within the tolerances", "[litho][gcode]") {
+TEST_CASE("litho G-code: ImageMagick's wizard and rose pictures print within the tolerances", "[litho][gcode]") {
   // A tool-level check with real pictures; needs Debian's imagemagick.
   if (gctest::run("test -x /usr/bin/convert").status != 0) {
     WARN("skipped: /usr/bin/convert (Debian's imagemagick) is not installed");

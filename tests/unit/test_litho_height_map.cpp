@@ -28,7 +28,7 @@ double gradient_luma(double s, double plate_width, int w) {
 
 }  // namespace
 
-TEST_CASE("a flat plate is 100 mm wide by default with the picture's aspect", "[litho][height_map]") {
+TEST_CASE("litho height map: a flat plate is 100 mm wide by default with the picture's aspect", "[litho][height_map]") {
   const HeightMap map(littest::gradient(64, 32), HeightMapOptions{});
   CHECK(map.length() == 100);
   CHECK(map.height() == 50);
@@ -40,7 +40,7 @@ TEST_CASE("a flat plate is 100 mm wide by default with the picture's aspect", "[
   CHECK(by_height.length() == Approx(80));
 }
 
-TEST_CASE("thickness at sampled points equals the image mapping", "[litho][height_map]") {
+TEST_CASE("litho height map: thickness at sampled points equals the image mapping", "[litho][height_map]") {
   const HeightMap map(littest::gradient(64, 32), HeightMapOptions{});
   std::mt19937 rng(15);
   std::uniform_real_distribution<double> s_dist(0, 100), z_dist(0, 50);
@@ -55,7 +55,7 @@ TEST_CASE("thickness at sampled points equals the image mapping", "[litho][heigh
   CHECK(map.thickness(100, 10) == Approx(0.8));
 }
 
-TEST_CASE("the top of the picture is the top of the plate", "[litho][height_map]") {
+TEST_CASE("litho height map: the top of the picture is the top of the plate", "[litho][height_map]") {
   // Vertical gradient: black top row, white bottom row.
   const HeightMap map(littest::gradient(10, 20, true), HeightMapOptions{});
   REQUIRE(map.height() == Approx(200));
@@ -68,7 +68,7 @@ TEST_CASE("the top of the picture is the top of the plate", "[litho][height_map]
   }
 }
 
-TEST_CASE("invert makes light thick and a border frames the picture at full thickness", "[litho][height_map]") {
+TEST_CASE("litho height map: invert makes light thick and a border frames the picture at full thickness", "[litho][height_map]") {
   HeightMapOptions o;
   o.tone.invert = true;
   o.border = 5;
@@ -86,7 +86,7 @@ TEST_CASE("invert makes light thick and a border frames the picture at full thic
   CHECK_FALSE(map.image_uv(3, 20, u, v));
 }
 
-TEST_CASE("a cylinder wraps the picture once around its base and joins the two edges", "[litho][height_map]") {
+TEST_CASE("litho height map: a cylinder wraps the picture once around its base and joins the two edges", "[litho][height_map]") {
   HeightMapOptions o;
   o.shape = LithoShape::Cylinder;
   const HeightMap map(littest::gradient(64, 32), o);
@@ -103,7 +103,7 @@ TEST_CASE("a cylinder wraps the picture once around its base and joins the two e
   CHECK(map.thickness(10.5 * pitch, 20) == Approx(0.8 + (1 - std::round(255.0 * 10 / 63) / 255) * 2.2));
 }
 
-TEST_CASE("impossible height map options fail with the option named", "[litho][height_map]") {
+TEST_CASE("litho height map: impossible height map options fail with the option named", "[litho][height_map]") {
   HeightMapOptions o;
   o.min_thickness = 3;
   o.max_thickness = 3;

@@ -34,7 +34,7 @@ int expected_gradient(int x) { return static_cast<int>(std::lround(255.0 * x / 6
 
 }  // namespace
 
-TEST_CASE("luma uses Rec 601 weights and puts transparency over white", "[litho][image]") {
+TEST_CASE("litho image: luma uses Rec 601 weights and puts transparency over white", "[litho][image]") {
   CHECK(gcode::litho::luma_of(255, 255, 255) == 255);
   CHECK(gcode::litho::luma_of(0, 0, 0) == 0);
   CHECK(gcode::litho::luma_of(255, 0, 0) == 76);   // 0.299 x 255
@@ -44,7 +44,7 @@ TEST_CASE("luma uses Rec 601 weights and puts transparency over white", "[litho]
   CHECK(gcode::litho::luma_of(0, 0, 0, 128) == 127);
 }
 
-TEST_CASE("PGM PNG BMP and JPEG fixtures decode to the same grey gradient", "[litho][image]") {
+TEST_CASE("litho image: PGM PNG BMP and JPEG fixtures decode to the same grey gradient", "[litho][image]") {
   for (const char* name : {"gradient.pgm", "gradient.png", "gradient.bmp", "gradient.jpg"}) {
     INFO(name);
     const GreyImage image = load_image(image_fixture(name));
@@ -57,7 +57,7 @@ TEST_CASE("PGM PNG BMP and JPEG fixtures decode to the same grey gradient", "[li
   }
 }
 
-TEST_CASE("an RGBA PNG becomes luma with transparent pixels white", "[litho][image]") {
+TEST_CASE("litho image: an RGBA PNG becomes luma with transparent pixels white", "[litho][image]") {
   const GreyImage image = load_image(image_fixture("colours.png"));
   REQUIRE(image.width() == 2);
   REQUIRE(image.height() == 2);
@@ -67,7 +67,7 @@ TEST_CASE("an RGBA PNG becomes luma with transparent pixels white", "[litho][ima
   CHECK(image.at(1, 1) == 255);
 }
 
-TEST_CASE("a picture in memory decodes like the file", "[litho][image]") {
+TEST_CASE("litho image: a picture in memory decodes like the file", "[litho][image]") {
   const GreyImage generated = littest::gradient(7, 5, true);
   const std::string bytes = littest::pgm(generated);
   const GreyImage decoded = decode_image(
@@ -75,7 +75,7 @@ TEST_CASE("a picture in memory decodes like the file", "[litho][image]") {
   CHECK(decoded.pixels() == generated.pixels());
 }
 
-TEST_CASE("unusable pictures fail with a message naming the file and the problem", "[litho][image]") {
+TEST_CASE("litho image: unusable pictures fail with a message naming the file and the problem", "[litho][image]") {
   CHECK_THAT(load_error(image_fixture("missing.png")),
              Catch::Contains("missing.png") && Catch::Contains("cannot open") && Catch::Contains("No such file"));
   CHECK_THAT(load_error(image_fixture("empty.png")), Catch::Contains("empty.png: empty file"));
@@ -86,7 +86,7 @@ TEST_CASE("unusable pictures fail with a message naming the file and the problem
   CHECK_THROWS_AS(decode_image({}, "nothing"), ImageError);
 }
 
-TEST_CASE("a 20000 x 20000 picture is refused from its header before any decoding", "[litho][image]") {
+TEST_CASE("litho image: a 20000 x 20000 picture is refused from its header before any decoding", "[litho][image]") {
   // The fixture is a PGM header that claims 20000 x 20000, then 64 bytes.
   // stb_image would decode it (the missing rows read as zeros) into 400 MB
   // and the luma copy into 400 MB more, all touched: the peak resident size
@@ -101,7 +101,7 @@ TEST_CASE("a 20000 x 20000 picture is refused from its header before any decodin
   CHECK(after.ru_maxrss - before.ru_maxrss < 64 * 1024);  // KiB
 }
 
-TEST_CASE("a lower pixel limit refuses a picture just above it and takes one at it", "[litho][image]") {
+TEST_CASE("litho image: a lower pixel limit refuses a picture just above it and takes one at it", "[litho][image]") {
   gcode::litho::ImageLimits limits;
   limits.max_pixels = 64 * 32;
   CHECK(load_image(image_fixture("gradient.png"), limits).width() == 64);
@@ -109,12 +109,12 @@ TEST_CASE("a lower pixel limit refuses a picture just above it and takes one at 
   CHECK_THAT(load_error(image_fixture("gradient.png"), limits), Catch::Contains("over the limit"));
 }
 
-TEST_CASE("GreyImage refuses a pixel count that does not match its size", "[litho][image]") {
+TEST_CASE("litho image: GreyImage refuses a pixel count that does not match its size", "[litho][image]") {
   CHECK_THROWS_AS(GreyImage(2, 2, std::vector<std::uint8_t>(3)), std::invalid_argument);
   CHECK_THROWS_AS(GreyImage(0, 2, {}), std::invalid_argument);
 }
 
-TEST_CASE("the tone curve maps dark to thick and applies invert gamma and contrast", "[litho][image]") {
+TEST_CASE("litho image: the tone curve maps dark to thick and applies invert gamma and contrast", "[litho][image]") {
   using gcode::litho::ToneCurve;
   using gcode::litho::ToneOptions;
   const ToneCurve plain;

@@ -47,7 +47,7 @@ std::size_t count_role(const LithoLayer& layer, PathRole role) {
 
 }  // namespace
 
-TEST_CASE("a uniform full thickness plate is exactly filled by a wall loop and three passes", "[litho][lithophane]") {
+TEST_CASE("litho planner: a uniform full thickness plate is exactly filled by a wall loop and three passes", "[litho][lithophane]") {
   const HeightMap map(flat_grey(0), plate(20));  // 3.0 mm everywhere, 20 x 20 mm
   const LithophanePlanner planner(map, LithoOptions{});
   CHECK(planner.layer_count() == 100);
@@ -84,7 +84,7 @@ TEST_CASE("a uniform full thickness plate is exactly filled by a wall loop and t
   CHECK(layer.paths[3].start.y - layer.paths[2].start.y == Approx(0.7));
 }
 
-TEST_CASE("a band thinner than two walls is shared by the walls at their extruder rate", "[litho][lithophane]") {
+TEST_CASE("litho planner: a band thinner than two walls is shared by the walls at their extruder rate", "[litho][lithophane]") {
   const HeightMap map(flat_grey(255), plate(20));  // 0.8 mm everywhere
   const LithophanePlanner planner(map, LithoOptions{});
   LithoLayer layer;
@@ -100,7 +100,7 @@ TEST_CASE("a band thinner than two walls is shared by the walls at their extrude
   CHECK(inner.pieces[0].to.x - inner.start.x == Approx(20 - 0.45));
 }
 
-TEST_CASE("a gap narrower than the minimum pass gets no pass and the walls close it", "[litho][lithophane]") {
+TEST_CASE("litho planner: a gap narrower than the minimum pass gets no pass and the walls close it", "[litho][lithophane]") {
   // 2 x 0.45 + 0.1 = 1.0 mm: a gap of 0.1 mm, under the 0.2 mm minimum.
   const HeightMap map(flat_grey(luma_for(1.0)), plate(20));
   const LithophanePlanner planner(map, LithoOptions{});
@@ -113,7 +113,7 @@ TEST_CASE("a gap narrower than the minimum pass gets no pass and the walls close
   CHECK(layer.paths[0].pieces[0].width == Approx(t / 2));
 }
 
-TEST_CASE("pass counts follow the gap and every layer's strips tile the band", "[litho][lithophane]") {
+TEST_CASE("litho planner: pass counts follow the gap and every layer's strips tile the band", "[litho][lithophane]") {
   // Horizontal gradient: 3.0 mm at the left edge to 0.8 mm at the right.
   const HeightMap map(littest::gradient(64, 32), plate(40));
   const LithophanePlanner planner(map, LithoOptions{});
@@ -127,7 +127,7 @@ TEST_CASE("pass counts follow the gap and every layer's strips tile the band", "
   }
 }
 
-TEST_CASE("a clamped speed keeps the width and the piece is counted", "[litho][lithophane]") {
+TEST_CASE("litho planner: a clamped speed keeps the width and the piece is counted", "[litho][lithophane]") {
   const HeightMap map(flat_grey(0), plate(20));
   LithoOptions slow;
   slow.max_speed = 50;  // the passes want 64.3 mm/s
@@ -151,7 +151,7 @@ TEST_CASE("a clamped speed keeps the width and the piece is counted", "[litho][l
   CHECK(layer.stats.clamped_slow == layer.stats.pieces);  // walls (40) and passes (64) both below 100
 }
 
-TEST_CASE("the first layer runs at the first layer factor of every rate", "[litho][lithophane]") {
+TEST_CASE("litho planner: the first layer runs at the first layer factor of every rate", "[litho][lithophane]") {
   const HeightMap map(flat_grey(0), plate(20));
   const LithophanePlanner planner(map, LithoOptions{});
   LithoLayer first, second;
@@ -165,7 +165,7 @@ TEST_CASE("the first layer runs at the first layer factor of every rate", "[lith
     }
 }
 
-TEST_CASE("a cylinder layer is an outer ring an inner ring and closed passes", "[litho][lithophane]") {
+TEST_CASE("litho planner: a cylinder layer is an outer ring an inner ring and closed passes", "[litho][lithophane]") {
   const HeightMap map(flat_grey(0), cylinder(40, 10));
   const LithophanePlanner planner(map, LithoOptions{});
   LithoLayer layer;
@@ -185,7 +185,7 @@ TEST_CASE("a cylinder layer is an outer ring an inner ring and closed passes", "
   CHECK(std::hypot(outer.start.x - 110, outer.start.y - 110) == Approx(r + 3 - 0.225));
 }
 
-TEST_CASE("a cylinder with a varying picture splits its passes into runs where the count changes", "[litho][lithophane]") {
+TEST_CASE("litho planner: a cylinder with a varying picture splits its passes into runs where the count changes", "[litho][lithophane]") {
   const HeightMap map(littest::gradient(64, 16), cylinder(30, 5));
   const LithophanePlanner planner(map, LithoOptions{});
   LithoLayer layer;
@@ -201,7 +201,7 @@ TEST_CASE("a cylinder with a varying picture splits its passes into runs where t
   CHECK(count_role(layer, PathRole::Fill) > 3);
 }
 
-TEST_CASE("impossible lithophane options fail with the option named", "[litho][lithophane]") {
+TEST_CASE("litho planner: impossible lithophane options fail with the option named", "[litho][lithophane]") {
   const HeightMap map(flat_grey(0), plate(20));
   LithoOptions o;
   o.min_speed = 200;

@@ -124,7 +124,7 @@ Written write(const HeightMap& map, const StlOptions& options = {}) {
 
 }  // namespace
 
-TEST_CASE("a flat lithophane STL is closed oriented outward and holds the height map's volume", "[litho][stl]") {
+TEST_CASE("litho STL: a flat lithophane STL is closed oriented outward and holds the height map's volume", "[litho][stl]") {
   HeightMapOptions o;
   o.width = 30;
   const HeightMap map(littest::strokes(60, 40), o);
@@ -166,7 +166,7 @@ TEST_CASE("a flat lithophane STL is closed oriented outward and holds the height
   CHECK(w.chunks == 100 + 2);
 }
 
-TEST_CASE("a cylinder lithophane STL is a closed tube with the band's volume", "[litho][stl]") {
+TEST_CASE("litho STL: a cylinder lithophane STL is a closed tube with the band's volume", "[litho][stl]") {
   HeightMapOptions o;
   o.shape = LithoShape::Cylinder;
   o.diameter = 30;
@@ -184,7 +184,7 @@ TEST_CASE("a cylinder lithophane STL is a closed tube with the band's volume", "
   CHECK(volume == Approx(map_volume(map)).epsilon(0.005));
 }
 
-TEST_CASE("an STL resolution that would overflow the triangle count is refused", "[litho][stl]") {
+TEST_CASE("litho STL: an STL resolution that would overflow the triangle count is refused", "[litho][stl]") {
   const HeightMap map(littest::gradient(8, 8), HeightMapOptions{});
   StlOptions o;
   o.resolution = 0.0001;

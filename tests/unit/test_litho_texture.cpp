@@ -40,7 +40,7 @@ int tile_at(const TextureProjection& proj, double x, double y, double z) {
 
 }  // namespace
 
-TEST_CASE("projection names parse and print", "[litho][texture]") {
+TEST_CASE("litho texture: projection names parse and print", "[litho][texture]") {
   for (const char* name : {"x", "y", "z", "cylinder", "sphere"}) {
     Projection p{};
     REQUIRE(gcode::litho::parse_projection(name, p));
@@ -50,7 +50,7 @@ TEST_CASE("projection names parse and print", "[litho][texture]") {
   CHECK_FALSE(gcode::litho::parse_projection("cube", p));
 }
 
-TEST_CASE("planar projections map points to the picture seen from the front side and above", "[litho][texture]") {
+TEST_CASE("litho texture: planar projections map points to the picture seen from the front side and above", "[litho][texture]") {
   // 40 x 20 mm (aspect kept), centred on X = Y = 110, bottom edge on the bed.
   const TextureProjection y(mapping(Projection::Y), 4, 2);
   CHECK(y.height() == 20);
@@ -74,7 +74,7 @@ TEST_CASE("planar projections map points to the picture seen from the front side
   CHECK(tile_at(s, 95, 0, 20) == -1);
 }
 
-TEST_CASE("the cylinder projection wraps once around with the centre facing the front", "[litho][texture]") {
+TEST_CASE("litho texture: the cylinder projection wraps once around with the centre facing the front", "[litho][texture]") {
   const TextureProjection c(mapping(Projection::Cylinder, 100), 4, 2);
   CHECK(c.height() == 50);
   const double r = 15;
@@ -90,7 +90,7 @@ TEST_CASE("the cylinder projection wraps once around with the centre facing the 
   CHECK(tile_at(c, 110 + 3, 110, 40) == tile_at(c, 110 + 40, 110, 40));
 }
 
-TEST_CASE("the sphere projection maps latitude to rows and longitude to columns", "[litho][texture]") {
+TEST_CASE("litho texture: the sphere projection maps latitude to rows and longitude to columns", "[litho][texture]") {
   TextureMapping m;
   m.projection = Projection::Sphere;
   m.center_z = 30;
@@ -102,7 +102,7 @@ TEST_CASE("the sphere projection maps latitude to rows and longitude to columns"
   CHECK(tile_at(s, 110, 110, 30) == -1);             // the centre itself
 }
 
-TEST_CASE("texture sizes keep the aspect and bad mappings are refused", "[litho][texture]") {
+TEST_CASE("litho texture: texture sizes keep the aspect and bad mappings are refused", "[litho][texture]") {
   TextureMapping m = mapping(Projection::Y, 0);
   m.height = 10;
   CHECK(TextureProjection(m, 4, 2).width() == 20);
@@ -117,7 +117,7 @@ TEST_CASE("texture sizes keep the aspect and bad mappings are refused", "[litho]
   CHECK_THROWS_WITH(TextureProjection(m, 4, 2), Catch::Contains("--width"));
 }
 
-TEST_CASE("speed is low plus grey times the range or a binary pair", "[litho][texture]") {
+TEST_CASE("litho texture: speed is low plus grey times the range or a binary pair", "[litho][texture]") {
   SpeedMapping s;
   s.low = 20;
   s.high = 60;
@@ -141,14 +141,14 @@ TEST_CASE("speed is low plus grey times the range or a binary pair", "[litho][te
   CHECK_THROWS_WITH(b.validate(), Catch::Contains("--ratio"));
 }
 
-TEST_CASE("a new speed keeps E per second when E scales by old speed over new", "[litho][texture]") {
+TEST_CASE("litho texture: a new speed keeps E per second when E scales by old speed over new", "[litho][texture]") {
   const double length = 2, e_old = 0.1, v_old = 40, v_new = 26;
   const double e_new = gcode::litho::constant_rate_extrusion(e_old, v_old, v_new);
   CHECK(e_new / (length / v_new) == Approx(e_old / (length / v_old)));
   CHECK(e_new > e_old);  // slower: a thicker bead
 }
 
-TEST_CASE("a textured move changes speed only where the pixel changes", "[litho][texture]") {
+TEST_CASE("litho texture: a textured move changes speed only where the pixel changes", "[litho][texture]") {
   const TextureProjection y(mapping(Projection::Y), 4, 2);
   SpeedMapping s;
   s.low = 20;
