@@ -1,0 +1,346 @@
+#include "gcode/litho/litho_gcode.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "gcode/core/line_builder.hpp"
+#include "gcode/core/number.hpp"
+#include "gcode/version.hpp"
+
+namespace gcode::litho {
+
+namespace {
+
+constexpr int kXYZ = 3;
+constexpr int kE = 5;
+
+std::string num(double v, int decimals = 3) {
+  char b[kMaxNumberChars];
+  return std::string(number_text(v, decimals, b));
+}
+
+const char* type_name(PathRole role) {
+  switch (role) {
+    case PathRole::WallOuter:
+      return ";TYPE:WALL-OUTER";
+    case PathRole::WallInner:
+      return ";TYPE:WALL-INNER";
+    case PathRole::Fill:
+      break;
+  }
+  return ";TYPE:FILL";
+}
+
+// Turns paths into lines. Keeps the head position, the modal F, and the E
+// rounding carry (relative E: each piece gets the exact running total,
+// rounded, minus what was already written).
+class Emitter {
+ public:
+  Emitter(const LithoGcodeOptions& options, double filament_area, double layer_height)
+      : options_(options), filament_area_(filament_area), layer_height_(layer_height) {}
+
+  std::string& text() { return text_; }
+
+  void line(std::string_view s) {
+    text_.append(s);
+    text_.push_back('\n');
+  }
+
+  void feed(LineBuilder& b, double mm_per_s) {
+    const std::int64_t f = to_scaled(mm_per_s * 60, 0);
+    if (f != feed_) {
+      feed_ = f;
+      char buf[kMaxNumberChars];
+      b.text(" F");
+      b.text(std::string_view(buf, format_scaled(f, 0, buf)));
+    }
+  }
+
+  // E is the planned width over the length as written (coordinates rounded
+  // to 3 decimals), so the bead's width, and with it the extruder rate at
+  // the written F, are what the planner asked for. A piece that rounds to no
+  // length at all is not written; its plastic goes to the next piece.
+  void extrude_to(const Piece& piece) {
+    const std::int64_t x = to_scaled(piece.to.x, kXYZ);
+    const std::int64_t y = to_scaled(piece.to.y, kXYZ);
+    if (x == x_ && y == y_) {
+      pending_volume_ += piece.volume;
+      return;
+    }
+    const double length = std::hypot(static_cast<double>(x - x_), static_cast<double>(y - y_)) / 1000;
+    b_.start("G1");
+    feed(b_, piece.speed);
+    b_.word('X', piece.to.x, kXYZ).word('Y', piece.to.y, kXYZ);
+    e_exact_ += (piece.width * layer_height_ * length + pending_volume_) / filament_area_;
+    pending_volume_ = 0;
+    const std::int64_t total = to_scaled(e_exact_, kE);
+    char buf[kMaxNumberChars];
+    b_.text(" E");
+    b_.text(std::string_view(buf, format_scaled(total - e_written_, kE, buf)));
+    e_written_ = total;
+    line(b_.view());
+    set_at(piece.to);
+  }
+
+  void retract(bool out) {
+    if (options_.retract_length <= 0 || retracted_ == out) return;
+    b_.start("G1");
+    feed(b_, options_.retract_speed);
+    b_.word('E', out ? -options_.retract_length : options_.retract_length, kE);
+    line(b_.view());
+    retracted_ = out;
+  }
+
+  // Travel to `to` at height `z` (Z first when going up, last when going down).
+  void travel(Point to, double z) {
+    const double d = std::hypot(to.x - at_.x, to.y - at_.y);
+    const bool moves_xy = to_scaled(to.x, kXYZ) != x_ || to_scaled(to.y, kXYZ) != y_;
+    const bool moves_z = to_scaled(z, kXYZ) != to_scaled(z_, kXYZ);
+    if (!moves_xy && !moves_z) return;
+    if (d > options_.retract_min_travel || moves_z) retract(true);
+    if (moves_z && z > z_) move_z(z);
+    if (moves_xy) {
+      b_.start("G0");
+      feed(b_, options_.travel_speed);
+      b_.word('X', to.x, kXYZ).word('Y', to.y, kXYZ);
+      line(b_.view());
+      set_at(to);
+    }
+    if (moves_z && z < z_) move_z(z);
+  }
+
+  void path(const Path& p, double z) {
+    if (p.pieces.empty()) return;
+    travel(p.start, z);
+    retract(false);
+    if (p.role != role_ || !typed_) {
+      line(type_name(p.role));
+      role_ = p.role;
+      typed_ = true;
+    }
+    for (const Piece& piece : p.pieces) extrude_to(piece);
+  }
+
+  void new_layer() { typed_ = false; }
+  void set_position(Point at, double z) {
+    set_at(at);
+    z_ = z;
+  }
+  double z() const { return z_; }
+  double filament_written() const { return static_cast<double>(e_written_) / 1e5; }
+
+ private:
+  void set_at(Point at) {
+    at_ = at;
+    x_ = to_scaled(at.x, kXYZ);
+    y_ = to_scaled(at.y, kXYZ);
+  }
+
+  void move_z(double z) {
+    b_.start("G0");
+    feed(b_, options_.travel_speed);
+    b_.word('Z', z, kXYZ);
+    line(b_.view());
+    z_ = z;
+  }
+
+  const LithoGcodeOptions& options_;
+  double filament_area_;
+  double layer_height_;
+  std::string text_;
+  LineBuilder b_;
+  Point at_;
+  std::int64_t x_ = 0, y_ = 0;  // at_ as written
+  double z_ = 0;
+  std::int64_t feed_ = -1;
+  double e_exact_ = 0;
+  double pending_volume_ = 0;
+  std::int64_t e_written_ = 0;
+  bool retracted_ = false;
+  bool typed_ = false;
+  PathRole role_ = PathRole::Fill;
+};
+
+std::string ensure_newline(std::string text) {
+  if (!text.empty() && text.back() != '\n') text.push_back('\n');
+  return text;
+}
+
+}  // namespace
+
+void LithoGcodeOptions::validate() const {
+  auto check = [](bool ok, const char* message) {
+    if (!ok) throw std::invalid_argument(message);
+  };
+  check(std::isfinite(nozzle_temp) && nozzle_temp >= 0 && nozzle_temp <= 450, "--nozzle-temp must be 0..450 C");
+  check(std::isfinite(bed_temp) && bed_temp >= 0 && bed_temp <= 150, "--bed-temp must be 0..150 C");
+  check(std::isfinite(travel_speed) && travel_speed > 0, "--travel-speed must be above 0");
+  check(std::isfinite(retract_length) && retract_length >= 0, "--retract must be 0 or above");
+  check(std::isfinite(retract_speed) && retract_speed > 0, "--retract-speed must be above 0");
+  check(std::isfinite(retract_min_travel) && retract_min_travel >= 0, "--retract-min-travel must be 0 or above");
+  check(fan >= 0 && fan <= 255, "--fan must be 0..255");
+  check(std::isfinite(estimated_seconds) && estimated_seconds >= 0, "the estimated time must be 0 or above");
+}
+
+BedBounds litho_bounds(const LithophanePlanner& planner) {
+  const HeightMap& map = planner.map();
+  const LithoOptions& o = planner.options();
+  if (map.closed()) {
+    const double r = map.base_radius() + map.max_thickness();
+    return {o.center_x - r, o.center_y - r, o.center_x + r, o.center_y + r};
+  }
+  const Point a = planner.point_at(0, 0);
+  const Point b = planner.point_at(map.length(), map.max_thickness());
+  return {a.x, a.y, b.x, b.y};
+}
+
+std::vector<std::string> litho_parameters(const LithophanePlanner& planner, const LithoGcodeOptions& options) {
+  const HeightMap& map = planner.map();
+  const HeightMapOptions& m = map.options();
+  const LithoOptions& o = planner.options();
+  std::vector<std::string> p;
+  auto add = [&](std::string_view name, std::string value) { p.push_back(fmt::format("{} = {}", name, value)); };
+  add("image", fmt::format("{} ({} x {} pixels)", options.image_name.empty() ? "-" : options.image_name,
+                           map.image().width(), map.image().height()));
+  add("shape", map.closed() ? "cylinder" : "flat");
+  if (map.closed()) {
+    add("diameter", num(m.diameter) + " mm (base surface)");
+    add("circumference", num(map.length()) + " mm");
+  } else {
+    add("width", num(map.length()) + " mm");
+  }
+  add("height", num(map.height()) + " mm");
+  add("min", num(m.min_thickness) + " mm");
+  add("max", num(m.max_thickness) + " mm");
+  add("border", num(m.border) + " mm");
+  add("invert", m.tone.invert ? "yes" : "no");
+  add("gamma", num(m.tone.gamma));
+  add("contrast", num(m.tone.contrast));
+  add("layer_height", num(o.layer_height) + " mm");
+  add("layers", std::to_string(planner.layer_count()));
+  add("nozzle", num(o.nozzle) + " mm");
+  add("line_width", num(o.line_width) + " mm");
+  add("filament_diameter", num(o.filament_diameter) + " mm");
+  add("wall_speed", num(o.wall_speed) + " mm/s");
+  add("infill_speed", num(o.infill_speed) + " mm/s");
+  add("max_flow", num(o.max_flow) + " mm3/s");
+  add("fill_rate", num(planner.fill_rate()) + " mm3/s (constant extruder rate of the passes)");
+  add("wall_rate", num(planner.wall_rate()) + " mm3/s");
+  add("min_speed", num(o.min_speed) + " mm/s");
+  add("max_speed", num(o.max_speed) + " mm/s");
+  add("min_pass_width", num(o.min_pass_width) + " mm");
+  add("max_pass_width", num(o.max_pass_width) + " mm");
+  add("resolution", num(o.resolution) + " mm");
+  add("first_layer_factor", num(o.first_layer_factor));
+  add("center", num(o.center_x) + "," + num(o.center_y) + " mm");
+  add("nozzle_temp", num(options.nozzle_temp) + " C");
+  add("bed_temp", num(options.bed_temp) + " C");
+  add("travel_speed", num(options.travel_speed) + " mm/s");
+  add("retract", num(options.retract_length, 5) + " mm at " + num(options.retract_speed) + " mm/s, travel over " +
+                     num(options.retract_min_travel) + " mm");
+  add("fan", std::to_string(options.fan));
+  add("start", options.start_code.empty() ? "built-in Marlin" : (options.start_name.empty() ? "given" : options.start_name));
+  add("end", options.end_code.empty() ? "built-in Marlin" : (options.end_name.empty() ? "given" : options.end_name));
+  return p;
+}
+
+LithoGcodeStats write_litho_gcode(const LithophanePlanner& planner, const LithoGcodeOptions& options,
+                                  const TextOut& out) {
+  options.validate();
+  const LithoOptions& o = planner.options();
+  LithoGcodeStats stats;
+  stats.layers = planner.layer_count();
+  LithoLayer layer;
+  // First pass: totals for the header.
+  for (int i = 0; i < planner.layer_count(); ++i) {
+    planner.plan_layer(i, layer);
+    stats.volume += layer.stats.volume;
+    stats.pieces += layer.stats.pieces;
+    stats.clamped_fast += layer.stats.clamped_fast;
+    stats.clamped_slow += layer.stats.clamped_slow;
+  }
+  stats.filament = stats.volume / planner.filament_area();
+
+  auto emit = [&](std::string& text) {
+    stats.bytes += text.size();
+    out(text);
+    text.clear();
+  };
+
+  Emitter e(options, planner.filament_area(), o.layer_height);
+  const BedBounds bounds = litho_bounds(planner);
+  const double h = o.layer_height;
+  e.line(";FLAVOR:Marlin");
+  if (options.estimated_seconds > 0) e.line(fmt::format(";TIME:{}", std::lround(options.estimated_seconds)));
+  e.line(fmt::format(";Filament used: {}m", num(stats.filament / 1000, 5)));
+  e.line(fmt::format(";Layer height: {}", num(h)));
+  e.line(fmt::format(";MINX:{}", num(bounds.min_x)));
+  e.line(fmt::format(";MINY:{}", num(bounds.min_y)));
+  e.line(fmt::format(";MINZ:{}", num(planner.layer_z(0))));
+  e.line(fmt::format(";MAXX:{}", num(bounds.max_x)));
+  e.line(fmt::format(";MAXY:{}", num(bounds.max_y)));
+  e.line(fmt::format(";MAXZ:{}", num(planner.layer_z(planner.layer_count() - 1))));
+  e.line("");
+  e.line(fmt::format(";Generated with gc-litho {}: a lithophane in variable-width passes at a constant extruder rate",
+                     kVersion));
+  for (const std::string& p : litho_parameters(planner, options)) e.line(";  " + p);
+  e.line(fmt::format(";  pieces = {}, clamped to max speed = {}, to min speed = {}", stats.pieces, stats.clamped_fast,
+                     stats.clamped_slow));
+
+  if (options.start_code.empty()) {
+    // Heat, home, then a purge line 5 mm in front of the part at first-layer height.
+    const double purge_y = bounds.min_y - 5;
+    const double purge_x0 = bounds.min_x;
+    const double purge_x1 = std::max(bounds.max_x, bounds.min_x + 20);
+    const double purge_volume = o.line_width * h * (purge_x1 - purge_x0) * 1.2;
+    e.line(fmt::format("M140 S{} ; bed", num(options.bed_temp, 0)));
+    e.line(fmt::format("M104 S{} ; nozzle", num(options.nozzle_temp, 0)));
+    e.line(fmt::format("M190 S{}", num(options.bed_temp, 0)));
+    e.line(fmt::format("M109 S{}", num(options.nozzle_temp, 0)));
+    e.line("G28 ; home all axes");
+    e.line("G90");
+    e.line("M83 ; relative extrusion");
+    e.line("M107");
+    e.line(fmt::format("G0 F{} Z2", num(options.travel_speed * 60, 0)));
+    e.line(fmt::format("G0 X{} Y{}", num(purge_x0), num(purge_y)));
+    e.line(fmt::format("G0 Z{}", num(planner.layer_z(0))));
+    e.line(fmt::format("G1 F1200 X{} E{} ; purge line", num(purge_x1),
+                       num(purge_volume / planner.filament_area(), kE)));
+    e.set_position({purge_x1, purge_y}, planner.layer_z(0));
+  } else {
+    e.text() += ensure_newline(options.start_code);
+    e.set_position({bounds.min_x, bounds.min_y - 5}, 5);  // unknown: make the first layer travel explicitly
+    e.line("G90");
+    e.line("M83 ; relative extrusion: each E below is one piece's filament");
+  }
+  e.line(fmt::format(";LAYER_COUNT:{}", planner.layer_count()));
+  emit(e.text());
+
+  for (int i = 0; i < planner.layer_count(); ++i) {
+    planner.plan_layer(i, layer);
+    e.line(fmt::format(";LAYER:{}", i));
+    if (i == 1 && options.fan > 0) e.line(fmt::format("M106 S{}", options.fan));
+    e.new_layer();
+    for (const Path& p : layer.paths) e.path(p, layer.z);
+    emit(e.text());
+  }
+
+  stats.filament = e.filament_written();
+  stats.volume = stats.filament * planner.filament_area();
+  if (options.end_code.empty()) {
+    e.retract(true);
+    e.line(fmt::format("G0 F600 Z{} ; lift", num(std::max(e.z() + 10, planner.layer_z(planner.layer_count() - 1) + 10))));
+    e.line("M104 S0");
+    e.line("M140 S0");
+    e.line("M107");
+    e.line("M84 ; motors off");
+  } else {
+    e.text() += ensure_newline(options.end_code);
+  }
+  emit(e.text());
+  return stats;
+}
+
+}  // namespace gcode::litho

@@ -1,0 +1,361 @@
+#include "gcode/litho/lithophane.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+namespace gcode::litho {
+
+namespace {
+
+bool positive(double v) { return std::isfinite(v) && v > 0; }
+
+void require_positive(double v, const char* option) {
+  if (!positive(v)) throw std::invalid_argument(fmt::format("{} must be a number above 0", option));
+}
+
+double distance(Point a, Point b) { return std::hypot(b.x - a.x, b.y - a.y); }
+
+Point end_of(const Path& path) { return path.pieces.empty() ? path.start : path.pieces.back().to; }
+
+}  // namespace
+
+LithoOptions LithoOptions::resolved() const {
+  LithoOptions r = *this;
+  if (r.line_width == 0) r.line_width = r.nozzle * 1.125;
+  if (r.max_pass_width == 0) r.max_pass_width = r.nozzle * 2.5;
+  if (r.min_pass_width == 0) r.min_pass_width = r.nozzle * 0.5;
+  return r;
+}
+
+void LithoOptions::validate(const HeightMapOptions& map) const {
+  const LithoOptions r = resolved();
+  require_positive(r.layer_height, "--layer-height");
+  require_positive(r.nozzle, "--nozzle");
+  require_positive(r.line_width, "--line-width");
+  require_positive(r.filament_diameter, "--filament-diameter");
+  require_positive(r.wall_speed, "--wall-speed");
+  require_positive(r.infill_speed, "--infill-speed");
+  require_positive(r.max_flow, "--max-flow");
+  require_positive(r.min_speed, "--min-speed");
+  require_positive(r.max_speed, "--max-speed");
+  require_positive(r.max_pass_width, "--max-pass-width");
+  require_positive(r.min_pass_width, "--min-pass-width");
+  require_positive(r.resolution, "--resolution");
+  require_positive(r.max_step, "the thickness step per piece");
+  require_positive(r.min_piece, "the shortest piece");
+  if (!(r.first_layer_factor > 0 && r.first_layer_factor <= 1))
+    throw std::invalid_argument("the first-layer speed factor must be above 0 and at most 1");
+  if (!std::isfinite(r.center_x) || !std::isfinite(r.center_y))
+    throw std::invalid_argument("--center must be a position on the bed");
+  if (!(r.min_speed < r.max_speed))
+    throw std::invalid_argument(
+        fmt::format("--min-speed ({} mm/s) must be less than --max-speed ({} mm/s)", r.min_speed, r.max_speed));
+  if (!(r.min_pass_width < r.max_pass_width))
+    throw std::invalid_argument(fmt::format("--min-pass-width ({} mm) must be less than --max-pass-width ({} mm)",
+                                            r.min_pass_width, r.max_pass_width));
+  if (!(r.layer_height < r.nozzle))
+    throw std::invalid_argument(
+        fmt::format("--layer-height ({} mm) must be less than the nozzle ({} mm)", r.layer_height, r.nozzle));
+  if (r.line_width < 0.5 * r.nozzle || r.line_width > 2 * r.nozzle)
+    throw std::invalid_argument(fmt::format("--line-width ({} mm) must be between half and twice the nozzle ({} mm)",
+                                            r.line_width, r.nozzle));
+  if (map.min_thickness < r.nozzle)
+    throw std::invalid_argument(
+        fmt::format("--min ({} mm) must be at least the nozzle ({} mm): each of the two walls needs half a nozzle",
+                    map.min_thickness, r.nozzle));
+}
+
+LithophanePlanner::LithophanePlanner(const HeightMap& map, const LithoOptions& options)
+    : map_(map), options_(options.resolved()) {
+  options_.validate(map.options());
+  const double lw = options_.line_width;
+  const double h = options_.layer_height;
+  if (!map.closed() && !(map.length() > 2 * lw + options_.resolution))
+    throw std::invalid_argument(fmt::format("a {:.2f} mm wide plate leaves no room between its walls", map.length()));
+  if (map.height() < h)
+    throw std::invalid_argument(
+        fmt::format("the lithophane ({:.2f} mm) is lower than one layer ({} mm)", map.height(), h));
+  layers_ = std::max(1, static_cast<int>(std::lround(map.height() / h)));
+  fill_rate_ = std::min(lw * h * options_.infill_speed, options_.max_flow);
+  wall_rate_ = std::min(lw * h * options_.wall_speed, options_.max_flow);
+  const double r = options_.filament_diameter / 2;
+  filament_area_ = std::numbers::pi * r * r;
+}
+
+Point LithophanePlanner::point_at(double s, double depth) const {
+  return map_.place(s, depth, options_.center_x, options_.center_y);
+}
+
+LithophanePlanner::Column LithophanePlanner::column(double s, double z) const {
+  const double t = map_.thickness(s, z);
+  const double lw = options_.line_width;
+  if (t - 2 * lw >= options_.min_pass_width) return {t, lw, t - 2 * lw};
+  return {t, t / 2, 0};
+}
+
+// A piece that continues the previous one in a straight line at the same
+// width and speed is the same bead: it extends it (an inner wall along a
+// flat base, passes over a uniform part), which keeps the G-code short.
+void LithophanePlanner::push_piece(Path& path, const Piece& piece) {
+  if (!path.pieces.empty()) {
+    Piece& last = path.pieces.back();
+    const Point from = path.pieces.size() > 1 ? path.pieces[path.pieces.size() - 2].to : path.start;
+    const double ax = last.to.x - from.x, ay = last.to.y - from.y;
+    const double bx = piece.to.x - last.to.x, by = piece.to.y - last.to.y;
+    const double along = ax * bx + ay * by;
+    const double off_line = std::abs(ax * by - ay * bx) / std::hypot(ax, ay);  // distance of the new end from the line
+    if (along > 0 && off_line < 1e-6 && std::abs(piece.width - last.width) <= 1e-9 * last.width &&
+        std::abs(piece.speed - last.speed) <= 1e-9 * last.speed && piece.clamped == last.clamped) {
+      last.to = piece.to;
+      last.volume += piece.volume;
+      return;
+    }
+  }
+  path.pieces.push_back(piece);
+}
+
+double LithophanePlanner::clamp_speed(double speed, Piece& piece, LayerStats& stats) const {
+  if (speed > options_.max_speed) {
+    piece.clamped = true;
+    ++stats.clamped_fast;
+    return options_.max_speed;
+  }
+  if (speed < options_.min_speed) {
+    piece.clamped = true;
+    ++stats.clamped_slow;
+    return options_.min_speed;
+  }
+  return speed;
+}
+
+bool LithophanePlanner::add_strip(const Strip& st, double rate, Path& path, LayerStats& stats) const {
+  const Point p0 = point_at(st.s0, (st.a0 + st.b0) / 2);
+  const Point p1 = point_at(st.s1, (st.a1 + st.b1) / 2);
+  const double length = distance(p0, p1);
+  if (length < 1e-9) return false;
+  // Strip area by Simpson's rule over s; exact here, since the depths are
+  // linear in s and a cylinder's area element (R + d) / R is linear in d.
+  const double radius = map_.base_radius();
+  auto depth_area = [&](double a, double b) { return (b - a) * (radius > 0 ? (radius + (a + b) / 2) / radius : 1.0); };
+  const double f0 = depth_area(st.a0, st.b0);
+  const double f1 = depth_area(st.a1, st.b1);
+  const double fm = depth_area((st.a0 + st.a1) / 2, (st.b0 + st.b1) / 2);
+  const double area = std::abs(st.s1 - st.s0) * (f0 + 4 * fm + f1) / 6;
+  if (!(area > 0)) return false;
+  Piece piece;
+  piece.to = p1;
+  piece.width = area / length;
+  piece.volume = area * options_.layer_height;
+  piece.speed = clamp_speed(rate / (piece.width * options_.layer_height), piece, stats);
+  push_piece(path, piece);
+  stats.band_area += area;
+  stats.volume += piece.volume;
+  ++stats.pieces;
+  if (path.role == PathRole::Fill) ++stats.fill_pieces;
+  return true;
+}
+
+// A flat plate's end cap: a wall bead across the thickness, at right angles to the walls.
+void LithophanePlanner::add_cap(Point from, Point to, double rate, Path& path, LayerStats& stats) const {
+  const double length = distance(from, to);
+  if (length < 1e-9) return;
+  Piece piece;
+  piece.to = to;
+  piece.width = options_.line_width;
+  piece.volume = piece.width * length * options_.layer_height;
+  piece.speed = clamp_speed(rate / (piece.width * options_.layer_height), piece, stats);
+  push_piece(path, piece);
+  stats.band_area += piece.width * length;
+  stats.volume += piece.volume;
+  ++stats.pieces;
+}
+
+void LithophanePlanner::plan_layer(int index, LithoLayer& out) const {
+  if (index < 0 || index >= layers_) throw std::out_of_range("LithophanePlanner::plan_layer: no such layer");
+  out.index = index;
+  out.z = layer_z(index);
+  out.sample_z = (index + 0.5) * options_.layer_height;
+  out.paths.clear();
+  out.stats = {};
+  const double factor = index == 0 ? options_.first_layer_factor : 1.0;
+  const double fill_rate = fill_rate_ * factor;
+  const double wall_rate = wall_rate_ * factor;
+  const double lw = options_.line_width;
+  const double length = map_.length();
+  const double zs = out.sample_z;
+
+  // Sample points: the passes' span, from one wall's end to the other's, or the whole circle.
+  std::vector<double> s;
+  std::vector<Column> cols;
+  const double first = map_.closed() ? 0.0 : lw;
+  const double span = map_.closed() ? length : length - 2 * lw;
+  const int n = std::max(map_.closed() ? 16 : 1, static_cast<int>(std::ceil(span / options_.resolution - 1e-9)));
+  s.reserve(static_cast<std::size_t>(n) + 1);
+  cols.reserve(static_cast<std::size_t>(n) + 1);
+  const double step = span / n;
+  const int most_cuts = std::max(1, static_cast<int>(step / options_.min_piece));
+  Column next = column(first, zs);
+  for (int k = 0; k < n; ++k) {
+    const double s0 = first + span * k / n;
+    const Column c0 = next;
+    next = column(first + span * (k + 1) / n, zs);
+    s.push_back(s0);
+    cols.push_back(c0);
+    const int cuts = std::min(most_cuts, static_cast<int>(std::ceil(std::abs(next.t - c0.t) / options_.max_step)));
+    for (int j = 1; j < cuts; ++j) {
+      s.push_back(s0 + step * j / cuts);
+      cols.push_back(column(s.back(), zs));
+    }
+  }
+  s.push_back(first + span);
+  cols.push_back(next);
+  if (map_.closed()) cols.back() = cols.front();  // the same column, not a second sample of it
+
+  auto wall_strip = [&](double s0, const Column& c0, double s1, const Column& c1, bool outer) {
+    return outer ? Strip{s0, c0.t - c0.wall, c0.t, s1, c1.t - c1.wall, c1.t} : Strip{s0, 0, c0.wall, s1, 0, c1.wall};
+  };
+
+  if (map_.closed()) {
+    // Outer ring, then inner ring, as the paper prints them; both start at s = 0.
+    for (bool outer : {true, false}) {
+      Path path;
+      path.role = outer ? PathRole::WallOuter : PathRole::WallInner;
+      const double mid0 = outer ? cols[0].t - cols[0].wall / 2 : cols[0].wall / 2;
+      path.start = point_at(0, mid0);
+      for (std::size_t k = 0; k + 1 < s.size(); ++k)
+        add_strip(wall_strip(s[k], cols[k], s[k + 1], cols[k + 1], outer), wall_rate, path, out.stats);
+      if (!path.pieces.empty()) path.pieces.back().to = path.start;  // close the ring exactly
+      out.paths.push_back(std::move(path));
+    }
+  } else {
+    // One loop: the inner wall left to right along the base, a cap across the
+    // right end, the outer wall back along the picture, a cap across the left end.
+    const double left = lw / 2;
+    const double right = length - lw / 2;
+    const Column cl = column(left, zs);
+    const Column cr = column(right, zs);
+    Path inner;
+    inner.role = PathRole::WallInner;
+    inner.start = point_at(left, cl.wall / 2);
+    add_strip(wall_strip(left, cl, s[0], cols[0], false), wall_rate, inner, out.stats);
+    const std::size_t last = s.size() - 1;
+    for (std::size_t k = 0; k < last; ++k)
+      add_strip(wall_strip(s[k], cols[k], s[k + 1], cols[k + 1], false), wall_rate, inner, out.stats);
+    add_strip(wall_strip(s[last], cols[last], right, cr, false), wall_rate, inner, out.stats);
+    Path outer;
+    outer.role = PathRole::WallOuter;
+    outer.start = end_of(inner);
+    add_cap(outer.start, point_at(right, cr.t - cr.wall / 2), wall_rate, outer, out.stats);
+    add_strip(wall_strip(right, cr, s[last], cols[last], true), wall_rate, outer, out.stats);
+    for (std::size_t k = last; k > 0; --k)
+      add_strip(wall_strip(s[k], cols[k], s[k - 1], cols[k - 1], true), wall_rate, outer, out.stats);
+    add_strip(wall_strip(s[0], cols[0], left, cl, true), wall_rate, outer, out.stats);
+    add_cap(end_of(outer), inner.start, wall_rate, outer, out.stats);
+    out.paths.push_back(std::move(inner));
+    out.paths.push_back(std::move(outer));
+  }
+  plan_fill(s, cols, fill_rate, out);
+}
+
+// The passes between the walls. Piece k (from s[k] to s[k+1]) carries the
+// fewest equal passes that keep each at most max pass width at both its ends;
+// consecutive pieces with the same count form a group printed as that many
+// runs side by side. Where the count changes, the runs end and new ones begin.
+void LithophanePlanner::plan_fill(const std::vector<double>& s, const std::vector<Column>& cols, double rate,
+                                  LithoLayer& out) const {
+  const int m = static_cast<int>(s.size()) - 1;  // pieces
+  const bool cyclic = map_.closed();
+  const double length = map_.length();
+  std::vector<int> passes(static_cast<std::size_t>(m));
+  for (int k = 0; k < m; ++k) {
+    const double g = std::max(cols[k].gap, cols[k + 1].gap);
+    passes[k] = g > 0 ? std::max(1, static_cast<int>(std::ceil(g / options_.max_pass_width - 1e-9))) : 0;
+    out.stats.max_passes = std::max(out.stats.max_passes, passes[k]);
+  }
+  // Vertex i of a run may go past the seam of a cylinder: index modulo m, s unwrapped.
+  auto s_of = [&](int i) {
+    return cyclic ? s[static_cast<std::size_t>(i % m)] + (i / m) * length : s[static_cast<std::size_t>(i)];
+  };
+  auto col_of = [&](int i) -> const Column& { return cols[static_cast<std::size_t>(cyclic ? i % m : i)]; };
+  auto depth = [&](int i, int j, int count, double& a, double& b) {
+    const Column& c = col_of(i);
+    a = c.wall + c.gap * j / count;
+    b = c.wall + c.gap * (j + 1) / count;
+  };
+
+  Point cur = out.paths.empty() ? Point{} : end_of(out.paths.back());
+  const bool ring = cyclic && std::all_of(passes.begin(), passes.end(), [&](int p) { return p == passes[0]; });
+  if (ring) {
+    if (passes[0] == 0) return;
+    for (int j = 0; j < passes[0]; ++j) {
+      Path path;
+      path.role = PathRole::Fill;
+      double a = 0, b = 0;
+      depth(0, j, passes[0], a, b);
+      path.start = point_at(0, (a + b) / 2);
+      for (int k = 0; k < m; ++k) {
+        double a1 = 0, b1 = 0;
+        depth(k + 1, j, passes[0], a1, b1);
+        add_strip({s_of(k), a, b, s_of(k + 1), a1, b1}, rate, path, out.stats);
+        a = a1;
+        b = b1;
+      }
+      if (!path.pieces.empty()) path.pieces.back().to = path.start;
+      out.paths.push_back(std::move(path));
+    }
+    return;
+  }
+
+  int start = 0;
+  if (cyclic)
+    while (passes[static_cast<std::size_t>((start + m - 1) % m)] == passes[static_cast<std::size_t>(start)]) ++start;
+  int k = start;
+  while (k < start + m) {
+    const int count = passes[static_cast<std::size_t>(k % m)];
+    int end = k;
+    while (end < start + m && passes[static_cast<std::size_t>(end % m)] == count) ++end;
+    if (count > 0) {
+      // Vertices k..end. Start at the corner nearest the head, then serpentine.
+      double best = 0;
+      bool from_low = true, forward = true;
+      for (bool low : {true, false})
+        for (bool fwd : {true, false}) {
+          double a = 0, b = 0;
+          depth(fwd ? k : end, low ? 0 : count - 1, count, a, b);
+          const double d = distance(cur, point_at(s_of(fwd ? k : end), (a + b) / 2));
+          if ((low && fwd) || d < best) {
+            best = d;
+            from_low = low;
+            forward = fwd;
+          }
+        }
+      for (int p = 0; p < count; ++p) {
+        const int j = from_low ? p : count - 1 - p;
+        const bool fwd = forward == (p % 2 == 0);
+        Path path;
+        path.role = PathRole::Fill;
+        int i = fwd ? k : end;
+        const int step = fwd ? 1 : -1;
+        double a = 0, b = 0;
+        depth(i, j, count, a, b);
+        path.start = point_at(s_of(i), (a + b) / 2);
+        for (; fwd ? i < end : i > k; i += step) {
+          double a1 = 0, b1 = 0;
+          depth(i + step, j, count, a1, b1);
+          add_strip({s_of(i), a, b, s_of(i + step), a1, b1}, rate, path, out.stats);
+          a = a1;
+          b = b1;
+        }
+        cur = end_of(path);
+        out.paths.push_back(std::move(path));
+      }
+    }
+    k = end;
+  }
+}
+
+}  // namespace gcode::litho

@@ -1,0 +1,357 @@
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "gcode/litho/litho_gcode.hpp"
+#include "test_litho_support.hpp"
+#include "test_support.hpp"
+
+using gcode::litho::GreyImage;
+using gcode::litho::HeightMap;
+using gcode::litho::HeightMapOptions;
+using gcode::litho::LithoGcodeOptions;
+using gcode::litho::LithoOptions;
+using gcode::litho::LithophanePlanner;
+using gcode::litho::LithoShape;
+using littest::Bead;
+using littest::Role;
+
+namespace {
+
+constexpr double kFilamentArea = std::numbers::pi * 0.875 * 0.875;
+
+struct Generated {
+  std::string text;
+  gcode::litho::LithoGcodeStats stats;
+  std::vector<std::size_t> chunks;
+};
+
+Generated generate(const LithophanePlanner& planner, const LithoGcodeOptions& options = {}) {
+  Generated g;
+  g.stats = gcode::litho::write_litho_gcode(planner, options, [&](std::string_view chunk) {
+    g.text.append(chunk);
+    g.chunks.push_back(chunk.size());
+  });
+  return g;
+}
+
+HeightMapOptions plate(double width) {
+  HeightMapOptions o;
+  o.width = width;
+  return o;
+}
+
+HeightMapOptions cylinder(double diameter) {
+  HeightMapOptions o;
+  o.shape = LithoShape::Cylinder;
+  o.diameter = diameter;
+  return o;
+}
+
+// What the printed layer should hold: the band's area (independently
+// integrated from the height map, 0.005 mm steps) times the layer height.
+double band_volume(const HeightMap& map, double sample_z, double layer_height) {
+  double area = 0;
+  if (map.closed()) {
+    const double r = map.base_radius();
+    const int n = static_cast<int>(map.length() / 0.005);
+    for (int i = 0; i < n; ++i) {
+      const double t = map.thickness((i + 0.5) * map.length() / n, sample_z);
+      area += ((r + t) * (r + t) - r * r) / 2 * (2 * std::numbers::pi / n);
+    }
+  } else {
+    const int n = static_cast<int>(map.length() / 0.005);
+    for (int i = 0; i < n; ++i) area += map.thickness((i + 0.5) * map.length() / n, sample_z) * map.length() / n;
+  }
+  return area * layer_height;
+}
+
+// Coverage along one ray across the band, from the beads as the G-code
+// describes them: each bead is a strip of width E x filament area /
+// (length x layer height) around its segment; where it crosses the ray at
+// an angle its extent along the ray is width / sin(angle). Gaps between
+// beads are one thing; where the outermost beads end against the band's
+// true surface is another (the surface is sampled every `resolution` mm, so
+// between samples it is a chord of the picture's curve).
+struct Coverage {
+  double max_gap = 0;      // widest uncovered stretch between beads
+  double surface = 0;      // largest distance between the covered span's ends and the band's ends
+};
+
+Coverage coverage(const std::vector<Bead>& beads, double ox, double oy, double ux, double uy, double lo, double hi,
+                  double layer_height) {
+  std::vector<std::pair<double, double>> spans;
+  const double nx = -uy, ny = ux;  // normal of the ray
+  for (const Bead& b : beads) {
+    const double dx = b.x1 - b.x0, dy = b.y1 - b.y0;
+    const double across = nx * dx + ny * dy;
+    if (std::abs(across) < 1e-12 || b.length <= 0) continue;
+    const double tau = (nx * (ox - b.x0) + ny * (oy - b.y0)) / across;
+    if (tau < 0 || tau > 1) continue;
+    const double px = b.x0 + tau * dx - ox, py = b.y0 + tau * dy - oy;
+    const double r = ux * px + uy * py;
+    if (r < 0) continue;
+    const double width = b.filament * kFilamentArea / (b.length * layer_height);
+    const double extent = width / 2 / (std::abs(across) / b.length);
+    spans.emplace_back(r - extent, r + extent);
+  }
+  std::sort(spans.begin(), spans.end());
+  Coverage c;
+  if (spans.empty()) {
+    c.max_gap = hi - lo;
+    return c;
+  }
+  double reach = spans.front().second;
+  for (const auto& [a, b] : spans) {
+    if (a > reach) c.max_gap = std::max(c.max_gap, a - reach);
+    reach = std::max(reach, b);
+  }
+  c.surface = std::max(std::abs(spans.front().first - lo), std::abs(reach - hi));
+  return c;
+}
+
+struct Measured {
+  double worst_volume_error = 0;  // relative, over all layers
+  double worst_gap = 0;           // mm
+  double worst_surface = 0;       // mm
+  double worst_rate_error = 0;    // relative, over unclamped fill pieces above the first layer
+  std::size_t rate_pieces = 0;
+  std::size_t layers = 0;
+};
+
+// Every check of the Proof section on one generated lithophane.
+Measured measure(const HeightMap& map, const LithophanePlanner& planner, const std::string& text,
+                 double gap_step) {
+  const LithoOptions& o = planner.options();
+  const littest::Replayed r = littest::replay(text);
+  Measured m;
+  m.layers = r.layer_z.size();
+  std::vector<std::vector<Bead>> layers(r.layer_z.size());
+  for (const Bead& b : r.beads) layers[static_cast<std::size_t>(b.layer)].push_back(b);
+  for (std::size_t i = 0; i < layers.size(); ++i) {
+    const double sample_z = (static_cast<double>(i) + 0.5) * o.layer_height;
+    double volume = 0;
+    for (const Bead& b : layers[i]) volume += b.filament * kFilamentArea;
+    const double expected = band_volume(map, sample_z, o.layer_height);
+    m.worst_volume_error = std::max(m.worst_volume_error, std::abs(volume / expected - 1));
+    // Gaps, on rays a little off the sample grid.
+    if (map.closed()) {
+      const double radius = map.base_radius();
+      for (double s = 0.013; s < map.length(); s += gap_step) {
+        const double a = s / radius;
+        const Coverage c = coverage(layers[i], o.center_x, o.center_y, std::cos(a), std::sin(a), radius,
+                                    radius + map.thickness(s, sample_z), o.layer_height);
+        m.worst_gap = std::max(m.worst_gap, c.max_gap);
+        m.worst_surface = std::max(m.worst_surface, c.surface);
+      }
+    } else {
+      const double lw = o.line_width;
+      const auto base = planner.point_at(0, 0);
+      for (double s = lw + 0.013; s < map.length() - lw; s += gap_step) {
+        const Coverage c = coverage(layers[i], base.x + s, base.y, 0, 1, 0, map.thickness(s, sample_z), o.layer_height);
+        m.worst_gap = std::max(m.worst_gap, c.max_gap);
+        m.worst_surface = std::max(m.worst_surface, c.surface);
+      }
+    }
+    if (i == 0) continue;  // the first layer runs at half the rate
+    for (const Bead& b : layers[i]) {
+      if (b.role != Role::Fill) continue;
+      if (b.feed >= o.max_speed * 60 || b.feed <= o.min_speed * 60) continue;  // clamped
+      const double rate = b.filament * kFilamentArea / (b.length / (b.feed / 60));
+      m.worst_rate_error = std::max(m.worst_rate_error, std::abs(rate / planner.fill_rate() - 1));
+      ++m.rate_pieces;
+    }
+  }
+  return m;
+}
+
+void report(const char* name, const Measured& m, const gcode::litho::LithoGcodeStats& stats) {
+  std::printf("litho %-22s layers %4zu  volume error %.3f %%  widest gap %.4f mm  surface %.4f mm  "
+              "rate error %.3f %% over %zu pieces  clamped %llu/%llu of %llu pieces\n",
+              name, m.layers, m.worst_volume_error * 100, m.worst_gap, m.worst_surface, m.worst_rate_error * 100,
+              m.rate_pieces, static_cast<unsigned long long>(stats.clamped_fast),
+              static_cast<unsigned long long>(stats.clamped_slow), static_cast<unsigned long long>(stats.pieces));
+}
+
+// Generates the lithophane with the default options, measures it, prints
+// the numbers and checks what holds for every picture: each layer's volume
+// within 3 % and the extruder rate within 1 %.
+Measured prove(const char* name, const HeightMap& map, double gap_step) {
+  const LithophanePlanner planner(map, LithoOptions{});
+  const Generated g = generate(planner);
+  const Measured m = measure(map, planner, g.text, gap_step);
+  report(name, m, g.stats);
+  CHECK(m.layers == static_cast<std::size_t>(planner.layer_count()));
+  CHECK(m.worst_volume_error < 0.03);
+  CHECK(m.rate_pieces > 1000);
+  CHECK(m.worst_rate_error < 0.01);
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("litho G-code: flat gradient lithophane deposits each layer's band volume with no gaps at a constant rate",
+          "[litho][gcode]") {
+  const Measured m = prove("flat gradient", HeightMap(littest::gradient(64, 32), plate(40)), 0.11);
+  CHECK(m.layers == 100);
+  CHECK(m.worst_gap <= 0.05);
+  CHECK(m.worst_surface <= 0.05);
+}
+
+TEST_CASE("litho G-code: cylinder gradient lithophane deposits each layer's band volume with no gaps at a constant rate",
+          "[litho][gcode]") {
+  const Measured m = prove("cylinder gradient", HeightMap(littest::gradient(64, 16), cylinder(30)), 0.23);
+  CHECK(m.worst_gap <= 0.05);
+  CHECK(m.worst_surface <= 0.05);
+}
+
+TEST_CASE("litho G-code: hard edged strokes keep the volume and the rate of unclamped pieces", "[litho][gcode]") {
+  const Measured m = prove("flat strokes", HeightMap(littest::strokes(120, 60), plate(40)), 0.11);
+  // On an edge the band's depth jumps 2.2 mm within one pixel (0.33 mm);
+  // pieces are cut to 0.05 mm there, and a bead has one width per piece, so
+  // beside the steepest pieces the beads are up to a quarter of a 0.35 mm
+  // step apart.
+  CHECK(m.worst_gap <= 0.15);
+}
+
+TEST_CASE("litho G-code: the G-code has Cura layer markers and types and every parameter in its header", "[litho][gcode]") {
+  const HeightMap map(littest::gradient(64, 32), plate(40));
+  const LithophanePlanner planner(map, LithoOptions{});
+  LithoGcodeOptions options;
+  options.image_name = "gradient.png";
+  options.estimated_seconds = 1234.4;
+  const Generated g = generate(planner, options);
+  const auto lines = gctest::split_lines(g.text);
+  CHECK(lines.front() == ";FLAVOR:Marlin\n");
+  CHECK_THAT(g.text, Catch::Contains(";TIME:1234\n") && Catch::Contains(";LAYER_COUNT:100\n") &&
+                         Catch::Contains(";LAYER:0\n") && Catch::Contains(";LAYER:99\n") &&
+                         !Catch::Contains(";LAYER:100\n") && Catch::Contains(";TYPE:WALL-INNER\n") &&
+                         Catch::Contains(";TYPE:WALL-OUTER\n") && Catch::Contains(";TYPE:FILL\n"));
+  for (const std::string& p : gcode::litho::litho_parameters(planner, options))
+    CHECK_THAT(g.text, Catch::Contains(";  " + p + "\n"));
+  CHECK_THAT(g.text, Catch::Contains("image = gradient.png (64 x 32 pixels)") &&
+                         Catch::Contains("wall_speed = 40 mm/s") && Catch::Contains("line_width = 0.45 mm") &&
+                         Catch::Contains("fill_rate = 9 mm3/s"));
+  const littest::Replayed r = littest::replay(g.text);
+  CHECK(r.layer_markers == 100);
+  CHECK(r.layer_count_header == 100);
+  for (std::size_t i = 0; i < r.layer_z.size(); ++i) REQUIRE(r.layer_z[i] == Approx(0.2 * (i + 1)));
+  // Every retraction is undone before the next extrusion, so only the purge
+  // line and the final retraction are filament outside the layers.
+  CHECK(r.retractions > 0);
+}
+
+TEST_CASE("litho G-code: numbers are written with 3 decimals for XYZ 5 for E and whole F", "[litho][gcode]") {
+  const HeightMap map(littest::gradient(16, 8), plate(20));
+  const LithophanePlanner planner(map, LithoOptions{});
+  const Generated g = generate(planner);
+  for (const std::string& line : gctest::split_lines(g.text)) {
+    if (line[0] != 'G') continue;
+    const std::string text = line.substr(0, line.size() - 1);  // the Line views into it
+    const gcode::Line l = gcode::Line::parse(text);
+    for (const auto& w : l) {
+      INFO(line);
+      REQUIRE(w.raw.find_first_not_of("-0123456789.") == std::string_view::npos);
+      const int limit = w.letter == 'E' ? 5 : w.letter == 'F' || w.letter == 'G' ? 0 : 3;
+      REQUIRE(static_cast<int>(w.decimals) <= limit);
+      if (w.decimals > 0) REQUIRE(w.raw.back() != '0');
+    }
+  }
+}
+
+TEST_CASE("litho G-code: each bead has its planned width and E rounding is carried", "[litho][gcode]") {
+  const HeightMap map(littest::gradient(64, 32), plate(40));
+  const LithophanePlanner planner(map, LithoOptions{});
+  const Generated g = generate(planner);
+  const littest::Replayed r = littest::replay(g.text);
+  // Beads come out in the planner's order, one per piece: E over the length
+  // as written is the planned width, and the running sum of E stays within
+  // the last digit of the exact running sum (rounding carried, not dropped).
+  std::size_t bead = 0;
+  double exact = 0, written = 0, worst_width = 0;
+  gcode::litho::LithoLayer layer;
+  for (int i = 0; i < planner.layer_count(); ++i) {
+    planner.plan_layer(i, layer);
+    for (const auto& path : layer.paths)
+      for (const auto& piece : path.pieces) {
+        REQUIRE(bead < r.beads.size());
+        const Bead& b = r.beads[bead++];
+        REQUIRE(b.layer == i);
+        exact += piece.width * 0.2 * b.length / kFilamentArea;
+        written += b.filament;
+        REQUIRE(std::abs(written - exact) < 1e-5);
+        worst_width = std::max(worst_width, std::abs(b.filament * kFilamentArea / (b.length * 0.2) / piece.width - 1));
+      }
+  }
+  CHECK(bead == r.beads.size());
+  CHECK(g.stats.filament == Approx(written));
+  std::printf("litho widths: worst relative width error from E rounding %.4f %%\n", worst_width * 100);
+}
+
+TEST_CASE("litho G-code: output comes one layer at a time", "[litho][gcode]") {
+  const HeightMap map(littest::gradient(64, 32), plate(40));
+  const LithophanePlanner planner(map, LithoOptions{});
+  const Generated g = generate(planner);
+  // Header and start, one chunk per layer, end.
+  REQUIRE(g.chunks.size() == static_cast<std::size_t>(planner.layer_count()) + 2);
+  const std::size_t largest = *std::max_element(g.chunks.begin(), g.chunks.end());
+  CHECK(largest < g.text.size() / 50);
+  CHECK(g.stats.bytes == g.text.size());
+}
+
+TEST_CASE("litho G-code: built-in start and end code heat home purge and switch off", "[litho][gcode]") {
+  const HeightMap map(littest::gradient(16, 8), plate(20));
+  const LithophanePlanner planner(map, LithoOptions{});
+  LithoGcodeOptions options;
+  options.nozzle_temp = 215;
+  options.bed_temp = 55;
+  const Generated g = generate(planner, options);
+  CHECK_THAT(g.text, Catch::Contains("M190 S55\n") && Catch::Contains("M109 S215\n") && Catch::Contains("G28") &&
+                         Catch::Contains("M83") && Catch::Contains("; purge line") && Catch::Contains("M104 S0\n") &&
+                         Catch::Contains("M140 S0\n") && Catch::Contains("M84"));
+  CHECK(g.text.find("M106 S255") > g.text.find(";LAYER:1\n"));
+  const gcode::MachineState end = gctest::replay_state(g.text);
+  CHECK(end.relative_e);
+  CHECK(end.position[gcode::kZ] > planner.layer_z(planner.layer_count() - 1) + 9);
+}
+
+TEST_CASE("litho G-code: user start and end code are used as given and the modes are set after them", "[litho][gcode]") {
+  const HeightMap map(littest::gradient(16, 8), plate(20));
+  const LithophanePlanner planner(map, LithoOptions{});
+  LithoGcodeOptions options;
+  options.start_code = "M82\nG28 ; my start";
+  options.end_code = "M300 ; my end\n";
+  options.start_name = "start.gcode";
+  const Generated g = generate(planner, options);
+  CHECK_THAT(g.text, Catch::Contains("M82\nG28 ; my start\nG90\nM83") && Catch::EndsWith("M300 ; my end\n") &&
+                         !Catch::Contains("M190") && Catch::Contains("start = start.gcode"));
+  options.retract_speed = 0;
+  CHECK_THROWS_WITH(generate(planner, options), Catch::Contains("--retract-speed"));
+}
+
+TEST_CASE("litho G-code: ImageMagick's wizard and rose pictures print within the tolerances", "[litho][gcode]") {
+  // A tool-level check with real pictures; needs Debian's imagemagick.
+  if (gctest::run("test -x /usr/bin/convert").status != 0) {
+    WARN("skipped: /usr/bin/convert (Debian's imagemagick) is not installed");
+    return;
+  }
+  const std::string dir = gctest::temp_dir();
+  for (const char* name : {"rose", "wizard"}) {
+    const std::string file = dir + "/" + name + ".png";
+    REQUIRE(gctest::run("/usr/bin/convert " + std::string(name) + ": " + gctest::quote(file)).status == 0);
+    for (LithoShape shape : {LithoShape::Flat, LithoShape::Cylinder}) {
+      HeightMapOptions ho = shape == LithoShape::Flat ? plate(50) : cylinder(20);
+      if (shape == LithoShape::Cylinder) ho.height = 25;
+      const HeightMap map(gcode::litho::load_image(file), ho);
+      const Measured m = prove((std::string(name) + (shape == LithoShape::Flat ? " flat" : " cylinder")).c_str(), map, 0.29);
+      // The rose is a photograph (soft edges): no gaps. The wizard is a
+      // cartoon with black outlines, where steep pieces leave small gaps.
+      CHECK(m.worst_gap <= (std::string(name) == "rose" ? 0.05 : 0.3));
+    }
+  }
+}

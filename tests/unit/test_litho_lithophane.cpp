@@ -1,0 +1,227 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "gcode/litho/lithophane.hpp"
+#include "test_litho_support.hpp"
+
+using gcode::litho::GreyImage;
+using gcode::litho::HeightMap;
+using gcode::litho::HeightMapOptions;
+using gcode::litho::LithoLayer;
+using gcode::litho::LithoOptions;
+using gcode::litho::LithophanePlanner;
+using gcode::litho::LithoShape;
+using gcode::litho::PathRole;
+
+namespace {
+
+GreyImage flat_grey(int luma) {
+  return GreyImage(8, 8, std::vector<std::uint8_t>(64, static_cast<std::uint8_t>(luma)));
+}
+
+HeightMapOptions plate(double width) {
+  HeightMapOptions o;
+  o.width = width;
+  return o;
+}
+
+HeightMapOptions cylinder(double diameter, double height) {
+  HeightMapOptions o;
+  o.shape = LithoShape::Cylinder;
+  o.diameter = diameter;
+  o.height = height;
+  return o;
+}
+
+// The luma that gives thickness t with the default range 0.8..3.0 mm.
+int luma_for(double t) { return static_cast<int>(std::lround(255 * (1 - (t - 0.8) / 2.2))); }
+
+std::size_t count_role(const LithoLayer& layer, PathRole role) {
+  std::size_t n = 0;
+  for (const auto& p : layer.paths) n += p.role == role;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("litho planner: a uniform full thickness plate is exactly filled by a wall loop and three passes", "[litho][lithophane]") {
+  const HeightMap map(flat_grey(0), plate(20));  // 3.0 mm everywhere, 20 x 20 mm
+  const LithophanePlanner planner(map, LithoOptions{});
+  CHECK(planner.layer_count() == 100);
+  CHECK(planner.fill_rate() == Approx(0.45 * 0.2 * 100));  // conventional infill at 100 mm/s: 9 mm3/s
+  CHECK(planner.wall_rate() == Approx(0.45 * 0.2 * 40));
+  LithoLayer layer;
+  planner.plan_layer(50, layer);
+  CHECK(layer.z == Approx(10.2));
+  CHECK(layer.sample_z == Approx(10.1));
+  // The gap is 3.0 - 2 x 0.45 = 2.1 mm: three passes of 0.7 mm (max pass width 1.0 mm).
+  CHECK(layer.stats.max_passes == 3);
+  CHECK(count_role(layer, PathRole::Fill) == 3);
+  CHECK(count_role(layer, PathRole::WallInner) == 1);
+  CHECK(count_role(layer, PathRole::WallOuter) == 1);
+  CHECK(layer.stats.band_area == Approx(20 * 3.0).epsilon(1e-12));
+  CHECK(layer.stats.volume == Approx(20 * 3.0 * 0.2).epsilon(1e-12));
+  CHECK(layer.stats.clamped_fast + layer.stats.clamped_slow == 0);
+  for (const auto& path : layer.paths)
+    for (const auto& piece : path.pieces) {
+      if (path.role == PathRole::Fill) {
+        REQUIRE(piece.width == Approx(0.7));
+        REQUIRE(piece.speed == Approx(9 / (0.7 * 0.2)));  // v = q / (W x H)
+      } else {
+        REQUIRE(piece.width == Approx(0.45));
+        REQUIRE(piece.speed == Approx(40));
+      }
+    }
+  // The wall loop closes on its start; passes sit side by side, 0.7 mm apart.
+  const auto& inner = layer.paths[0];
+  const auto& outer = layer.paths[1];
+  CHECK(outer.start.x == inner.pieces.back().to.x);
+  CHECK(outer.pieces.back().to.x == inner.start.x);
+  CHECK(outer.pieces.back().to.y == inner.start.y);
+  CHECK(layer.paths[3].start.y - layer.paths[2].start.y == Approx(0.7));
+}
+
+TEST_CASE("litho planner: a band thinner than two walls is shared by the walls at their extruder rate", "[litho][lithophane]") {
+  const HeightMap map(flat_grey(255), plate(20));  // 0.8 mm everywhere
+  const LithophanePlanner planner(map, LithoOptions{});
+  LithoLayer layer;
+  planner.plan_layer(3, layer);
+  CHECK(count_role(layer, PathRole::Fill) == 0);
+  CHECK(layer.stats.band_area == Approx(20 * 0.8).epsilon(1e-12));
+  // Along the plate each wall is 0.4 mm: faster than 40 mm/s so that the
+  // rate stays 3.6 mm3/s. The inner wall is straight and even: one move.
+  const auto& inner = layer.paths[0];
+  REQUIRE(inner.pieces.size() == 1);
+  CHECK(inner.pieces[0].width == Approx(0.4));
+  CHECK(inner.pieces[0].speed == Approx(3.6 / (0.4 * 0.2)));
+  CHECK(inner.pieces[0].to.x - inner.start.x == Approx(20 - 0.45));
+}
+
+TEST_CASE("litho planner: a gap narrower than the minimum pass gets no pass and the walls close it", "[litho][lithophane]") {
+  // 2 x 0.45 + 0.1 = 1.0 mm: a gap of 0.1 mm, under the 0.2 mm minimum.
+  const HeightMap map(flat_grey(luma_for(1.0)), plate(20));
+  const LithophanePlanner planner(map, LithoOptions{});
+  LithoLayer layer;
+  planner.plan_layer(10, layer);
+  const double t = map.thickness(10, layer.sample_z);
+  REQUIRE(t - 0.9 < 0.2);
+  CHECK(count_role(layer, PathRole::Fill) == 0);
+  CHECK(layer.stats.band_area == Approx(20 * t).epsilon(1e-12));
+  CHECK(layer.paths[0].pieces[0].width == Approx(t / 2));
+}
+
+TEST_CASE("litho planner: pass counts follow the gap and every layer's strips tile the band", "[litho][lithophane]") {
+  // Horizontal gradient: 3.0 mm at the left edge to 0.8 mm at the right.
+  const HeightMap map(littest::gradient(64, 32), plate(40));
+  const LithophanePlanner planner(map, LithoOptions{});
+  LithoLayer layer;
+  for (int i = 0; i < planner.layer_count(); i += 7) {
+    planner.plan_layer(i, layer);
+    double exact = 0;  // trapezoids of 0.001 mm
+    for (double s = 0; s < 40; s += 0.001) exact += (map.thickness(s, layer.sample_z) + map.thickness(s + 0.001, layer.sample_z)) / 2 * 0.001;
+    REQUIRE(layer.stats.band_area == Approx(exact).epsilon(1e-4));
+    REQUIRE(layer.stats.max_passes == 3);
+  }
+}
+
+TEST_CASE("litho planner: a clamped speed keeps the width and the piece is counted", "[litho][lithophane]") {
+  const HeightMap map(flat_grey(0), plate(20));
+  LithoOptions slow;
+  slow.max_speed = 50;  // the passes want 64.3 mm/s
+  const LithophanePlanner planner(map, slow);
+  LithoLayer layer;
+  planner.plan_layer(5, layer);
+  CHECK(layer.stats.clamped_fast == layer.stats.fill_pieces);
+  CHECK(layer.stats.volume == Approx(20 * 3.0 * 0.2).epsilon(1e-12));
+  for (const auto& path : layer.paths)
+    if (path.role == PathRole::Fill)
+      for (const auto& piece : path.pieces) {
+        REQUIRE(piece.speed == 50);
+        REQUIRE(piece.clamped);
+        REQUIRE(piece.width == Approx(0.7));
+      }
+  LithoOptions fast;
+  fast.min_speed = 100;
+  fast.max_speed = 300;
+  const LithophanePlanner p2(map, fast);
+  p2.plan_layer(5, layer);
+  CHECK(layer.stats.clamped_slow == layer.stats.pieces);  // walls (40) and passes (64) both below 100
+}
+
+TEST_CASE("litho planner: the first layer runs at the first layer factor of every rate", "[litho][lithophane]") {
+  const HeightMap map(flat_grey(0), plate(20));
+  const LithophanePlanner planner(map, LithoOptions{});
+  LithoLayer first, second;
+  planner.plan_layer(0, first);
+  planner.plan_layer(1, second);
+  REQUIRE(first.paths.size() == second.paths.size());
+  for (std::size_t p = 0; p < first.paths.size(); ++p)
+    for (std::size_t i = 0; i < first.paths[p].pieces.size(); ++i) {
+      REQUIRE(first.paths[p].pieces[i].speed == Approx(second.paths[p].pieces[i].speed / 2));
+      REQUIRE(first.paths[p].pieces[i].volume == Approx(second.paths[p].pieces[i].volume));
+    }
+}
+
+TEST_CASE("litho planner: a cylinder layer is an outer ring an inner ring and closed passes", "[litho][lithophane]") {
+  const HeightMap map(flat_grey(0), cylinder(40, 10));
+  const LithophanePlanner planner(map, LithoOptions{});
+  LithoLayer layer;
+  planner.plan_layer(20, layer);
+  REQUIRE(layer.paths.size() == 5);
+  CHECK(layer.paths[0].role == PathRole::WallOuter);
+  CHECK(layer.paths[1].role == PathRole::WallInner);
+  const double r = 20;
+  CHECK(layer.stats.band_area == Approx(std::numbers::pi * ((r + 3) * (r + 3) - r * r)).epsilon(1e-9));
+  for (const auto& path : layer.paths) {
+    // A ring ends exactly where it began.
+    CHECK(path.pieces.back().to.x == path.start.x);
+    CHECK(path.pieces.back().to.y == path.start.y);
+  }
+  // The outer wall's centre line runs 0.225 mm inside the 3 mm surface.
+  const auto& outer = layer.paths[0];
+  CHECK(std::hypot(outer.start.x - 110, outer.start.y - 110) == Approx(r + 3 - 0.225));
+}
+
+TEST_CASE("litho planner: a cylinder with a varying picture splits its passes into runs where the count changes", "[litho][lithophane]") {
+  const HeightMap map(littest::gradient(64, 16), cylinder(30, 5));
+  const LithophanePlanner planner(map, LithoOptions{});
+  LithoLayer layer;
+  planner.plan_layer(10, layer);
+  CHECK(layer.stats.max_passes == 3);
+  double exact = 0;  // polar area of the band, 0.0001 rad steps
+  const double r = 15;
+  for (double a = 0; a < 2 * std::numbers::pi; a += 1e-4) {
+    const double t = map.thickness(a * r, layer.sample_z);
+    exact += ((r + t) * (r + t) - r * r) / 2 * 1e-4;
+  }
+  CHECK(layer.stats.band_area == Approx(exact).epsilon(1e-3));
+  CHECK(count_role(layer, PathRole::Fill) > 3);
+}
+
+TEST_CASE("litho planner: impossible lithophane options fail with the option named", "[litho][lithophane]") {
+  const HeightMap map(flat_grey(0), plate(20));
+  LithoOptions o;
+  o.min_speed = 200;
+  CHECK_THROWS_WITH(LithophanePlanner(map, o), Catch::Contains("--min-speed (200 mm/s) must be less than --max-speed"));
+  o = {};
+  o.layer_height = 0;
+  CHECK_THROWS_WITH(LithophanePlanner(map, o), Catch::Contains("--layer-height"));
+  o = {};
+  o.layer_height = 0.5;
+  CHECK_THROWS_WITH(LithophanePlanner(map, o), Catch::Contains("must be less than the nozzle"));
+  o = {};
+  o.min_pass_width = 2;
+  CHECK_THROWS_WITH(LithophanePlanner(map, o), Catch::Contains("--min-pass-width"));
+  HeightMapOptions thin = plate(20);
+  thin.min_thickness = 0.3;
+  const HeightMap thin_map(flat_grey(0), thin);
+  CHECK_THROWS_WITH(LithophanePlanner(thin_map, LithoOptions{}), Catch::Contains("--min (0.3 mm) must be at least the nozzle"));
+  const HeightMap narrow(flat_grey(0), plate(1));
+  CHECK_THROWS_WITH(LithophanePlanner(narrow, LithoOptions{}), Catch::Contains("no room between its walls"));
+  const LithophanePlanner ok(map, LithoOptions{});
+  LithoLayer layer;
+  CHECK_THROWS_AS(ok.plan_layer(ok.layer_count(), layer), std::out_of_range);
+}
