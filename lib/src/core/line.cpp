@@ -272,8 +272,9 @@ Line Line::parse(std::string_view text) {
       } else {
         line.malformed = true;  // "X-", "X1e309", "X1.2.3"
       }
-    } else if (p != code_end && is_alpha(*p)) {
-      line.malformed = true;  // "Xnan": a letter glued to letters is no flag word
+    } else {
+      w.raw = std::string_view(p, 0);  // a flag: empty, placed right after its letter
+      if (p != code_end && is_alpha(*p)) line.malformed = true;  // "Xnan": a letter glued to letters is no flag word
     }
     line.add_word(w);
   }

@@ -30,7 +30,7 @@ struct Word {
   bool plain = true;          // a plain decimal of at most 18 digits: mantissa holds it
   std::uint8_t decimals = 0;  // digits after the point as written ("-.80" -> 2)
   std::int64_t mantissa = 0;  // the digits, signed: "-.80" -> -80 (with decimals 2)
-  std::string_view raw;       // the value as written, e.g. "-.8"
+  std::string_view raw;       // the value as written, e.g. "-.8"; a flag's is empty, placed after its letter
 
   // In the units written (no inch conversion); bit for bit what parsing the
   // text gives.
