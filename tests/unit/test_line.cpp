@@ -95,3 +95,35 @@ TEST_CASE("words know how many decimals they were written with", "[line]") {
   CHECK(l.find('Z')->decimals == 3);
   CHECK(l.find('F')->decimals == 3);
 }
+
+#include "reference_line.hpp"
+#include "test_support.hpp"
+
+TEST_CASE("the single-pass parser reads every fixture line as the reference parser does", "[line][property]") {
+  std::size_t lines = 0;
+  for (const std::string& name : gctest::fixture_names()) {
+    std::string text = gctest::read_file(gctest::fixture_path(name));
+    gcode::MemoryLineSplitter split(text);
+    gcode::RawLine raw;
+    while (split.next(raw)) {
+      ++lines;
+      std::string diff = gctest::compare_with_reference(Line::parse(raw.text), gctest::reference_parse(raw.text));
+      if (!diff.empty()) FAIL(name << ":" << raw.number << ": '" << raw.text << "' differs in " << diff);
+    }
+  }
+  CHECK(lines > 100000);
+}
+
+TEST_CASE("the single-pass parser agrees with the reference on odd lines", "[line][property]") {
+  const char* odd[] = {"N12*34", "N12 *34 G1", "N12 ;c", "G1 X1*71 ; c", "G1 X1.*71", "G*12", "G ;c", "G",
+                       "AB*12", "@pause now ; c", "@", "X*12", "A;", "G1 X1 (abc*12", "G1 X1 (a;b) Y2",
+                       "G1 (x) (y) Z3", "M117 hi*45", "N3 M117 a ; b", "G1 X1 *999", "G1 X1 * 12", "G29.1 Z.2",
+                       "g1x1y2e.5f300", "G1 X-.5 Y+3 E1e3", "G1 X1e309", "G1 X 1 Y\t2", "\x01\x02\xff junk",
+                       "G1\rX1", "T0", "M104 S210 T1 ; heat", "G92 E0.0", "G1 X12345678901234567890 Y1",
+                       "G1 X0.1234567890123 Y1", "  ;  comment only", "", "   ", "G1 X1 Y2 ;; x ; y", "(only)",
+                       "G1 X1 )", "G1 X1 *12 ;c", "N1 G1 X2*99 (x)"};
+  for (const char* text : odd) {
+    INFO("'" << text << "'");
+    CHECK(gctest::compare_with_reference(Line::parse(text), gctest::reference_parse(text)) == "");
+  }
+}

@@ -37,11 +37,8 @@ std::int64_t divide_rounded(std::int64_t a, std::int64_t b) {
 
 }  // namespace
 
-Fixed Fixed::from_decimal(std::int64_t mantissa, int decimals) {
-  if (decimals <= kDecimals) {
-    if (decimals < 0) decimals = 0;
-    return from_units(mul_sat(mantissa, kPow10[kDecimals - decimals]));
-  }
+Fixed Fixed::from_decimal_slow(std::int64_t mantissa, int decimals) {
+  if (decimals < 0) return from_units(mul_sat(mantissa, kOne));
   if (decimals - kDecimals > 18) return Fixed();
   return from_units(divide_rounded(mantissa, kPow10[decimals - kDecimals]));
 }
@@ -51,12 +48,6 @@ Fixed Fixed::from_double(double value) {
   if (value >= static_cast<double>(kMax) / kOne) return Fixed(kMax);
   if (value <= -static_cast<double>(kMax) / kOne) return Fixed(-kMax);
   return Fixed(to_scaled(value, kDecimals));
-}
-
-double Fixed::to_double() const {
-  // Below 2^53 the integer is exact, so one IEEE division rounds correctly:
-  // the same double as parsing the decimal text.
-  return static_cast<double>(units_) / 1e9;
 }
 
 std::int64_t Fixed::scaled(int decimals) const {

@@ -45,7 +45,8 @@ std::size_t LayerTracker::Held::add(const RawLine& raw) {
 // a typical file are held.
 void LayerTracker::keep(Held& held, const View& v) {
   std::size_t pos = held.add(v.raw);
-  Item& item = held.items.emplace_back();
+  Item& item = held.next_slot();
+  v.line.copy_onto(v.line.text, item.line);
   item.text_pos = pos;
   item.text_len = static_cast<std::uint32_t>(v.raw.text.size());
   item.ending_len = static_cast<std::uint8_t>(v.raw.ending.size());
@@ -112,11 +113,11 @@ void LayerTracker::step(const View& v) {
 }
 
 void LayerTracker::hold(const View& v) {
-  if (tail_.items.empty()) before_tail_ = v.before;
+  if (tail_.empty()) before_tail_ = v.before;
   keep(tail_, v);
   if (tail_.arena.size() > kTailBytes) {
-    emit_tail(0, tail_.items.size());
-    before_tail_ = tail_.items.back().after;
+    emit_tail(0, tail_.size());
+    before_tail_ = tail_.back().after;
     tail_.clear();
   }
 }
@@ -126,15 +127,16 @@ void LayerTracker::resolve_undecided(LayerMode mode) {
   Held old = std::move(pending_);
   pending_.clear();
   MachineState initial;
-  for (std::size_t i = 0; i < old.items.size(); ++i) {
-    const Item& it = old.items[i];
+  for (std::size_t i = 0; i < old.size(); ++i) {
+    const Item& it = old[i];
     RawLine raw;
     raw.text = std::string_view(old.arena).substr(it.text_pos, it.text_len);
     raw.ending = std::string_view(old.arena).substr(it.text_pos + it.text_len, it.ending_len);
     raw.number = it.number;
     raw.offset = it.offset;
-    Line line = Line::parse(raw.text);
-    step(View{raw, line, it.move, i == 0 ? initial : old.items[i - 1].after, it.after, it.feature, it.marker});
+    Line line;
+    it.line.copy_onto(raw.text, line);
+    step(View{raw, line, it.move, i == 0 ? initial : old[i - 1].after, it.after, it.feature, it.marker});
   }
 }
 
@@ -148,7 +150,7 @@ void LayerTracker::resolve_tail_for_extrusion(const View& extrusion) {
 }
 
 const MachineState& LayerTracker::tail_state_before(std::size_t index) const {
-  return index == 0 ? before_tail_ : tail_.items[index - 1].after;
+  return index == 0 ? before_tail_ : tail_[index - 1].after;
 }
 
 void LayerTracker::begin_layer(LayerInfo info, std::size_t boundary) {
@@ -167,13 +169,13 @@ void LayerTracker::resolve_markers(const View& extrusion) {
     long number;
     double z, height;
   };
-  if (tail_.items.empty()) return;  // the common case: extrusion follows extrusion
+  if (tail_.empty()) return;  // the common case: extrusion follows extrusion
   // Markers of different kinds in one gap are one layer (PrusaSlicer profiles
   // write ;LAYER_CHANGE and a custom ;LAYER:n); a repeated kind is a new one.
   Group groups[64];
   std::size_t count = 0;
   std::size_t first_z_change = npos;
-  const auto& items = tail_.items;
+  const Held& items = tail_;
   for (std::size_t i = 0; i < items.size(); ++i) {
     const CommentInfo& c = items[i].marker;
     if (first_z_change == npos && items[i].move.z_changed) first_z_change = i;
@@ -231,7 +233,7 @@ void LayerTracker::resolve_markers(const View& extrusion) {
 }
 
 void LayerTracker::resolve_heuristic(const View& extrusion) {
-  const auto& items = tail_.items;
+  const Held& items = tail_;
   double z = extrusion.move.start[kZ];
   if (layers_ > 0 && std::fabs(z - layer_z_) <= kSameZ) {
     emit_tail(0, items.size());
@@ -265,13 +267,14 @@ void LayerTracker::emit_item(const Item& item, const std::string& arena, const M
   raw.ending = std::string_view(arena).substr(item.text_pos + item.text_len, item.ending_len);
   raw.number = item.number;
   raw.offset = item.offset;
-  Line line = Line::parse(raw.text);
+  Line line;
+  item.line.copy_onto(raw.text, line);
   sink_.on_line(
       TrackedLine{raw, line, item.move, before, item.after, region_, layers_, item.feature, LineOrigin::Input});
 }
 
 void LayerTracker::emit_tail(std::size_t from, std::size_t to) {
-  for (std::size_t i = from; i < to; ++i) emit_item(tail_.items[i], tail_.arena, tail_state_before(i));
+  for (std::size_t i = from; i < to; ++i) emit_item(tail_[i], tail_.arena, tail_state_before(i));
 }
 
 void LayerTracker::finish() {
@@ -281,14 +284,14 @@ void LayerTracker::finish() {
   if (mode_ == LayerMode::Undecided) resolve_undecided(LayerMode::Heuristic);
   if (layers_ > 0) {
     std::uint64_t first_line = 0, offset = 0;
-    if (!tail_.items.empty()) {
-      first_line = tail_.items.front().number;
-      offset = tail_.items.front().offset;
+    if (!tail_.empty()) {
+      first_line = tail_.front().number;
+      offset = tail_.front().offset;
     }
     sink_.on_end_code(first_line, offset, tail_state_before(0));
     region_ = Region::EndCode;
   }
-  emit_tail(0, tail_.items.size());
+  emit_tail(0, tail_.size());
   tail_.clear();
 }
 

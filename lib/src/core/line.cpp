@@ -93,6 +93,34 @@ std::string_view trim(std::string_view s) {
 
 }  // namespace
 
+void Line::copy_onto(std::string_view new_text, Line& out) const {
+  const auto from = reinterpret_cast<std::uintptr_t>(text.data());
+  const auto to = reinterpret_cast<std::uintptr_t>(new_text.data());
+  auto move = [from, to](std::string_view v) {
+    if (v.data() == nullptr) return v;
+    return std::string_view(reinterpret_cast<const char*>(reinterpret_cast<std::uintptr_t>(v.data()) - from + to), v.size());
+  };
+  out.text = new_text;
+  out.kind = kind;
+  out.letter = letter;
+  out.number = number;
+  out.subcode = subcode;
+  out.command = move(command);
+  out.argument = move(argument);
+  out.comment = move(comment);
+  out.comment_pos = comment_pos;
+  out.has_line_number = has_line_number;
+  out.line_number = line_number;
+  out.has_checksum = has_checksum;
+  out.checksum = checksum;
+  out.malformed = malformed;
+  out.count_ = count_;
+  for (std::size_t i = 0; i < count_; ++i) {
+    Word& w = *::new (&out.words_.at[i]) Word(words_.at[i]);
+    w.raw = move(w.raw);
+  }
+}
+
 double Word::value_slow() const {
   double v = 0;
   parse_number(raw, v);
@@ -108,14 +136,6 @@ bool takes_string_argument(char letter, int number) {
       return true;
     default:
       return false;
-  }
-}
-
-void Line::add_word(const Word& w) {
-  if (count_ < kMaxWords) {
-    ::new (&words_.at[count_++]) Word(w);
-  } else {
-    malformed = true;
   }
 }
 
@@ -137,73 +157,99 @@ std::string_view Line::code() const {
   return c;
 }
 
+namespace {
+
+// "*nn" at p followed only by blanks up to the end or a ';' comment: the
+// checksum of a numbered line (its value, else -1).
+int checksum_at(const char* p, const char* end) {
+  const char* q = p + 1;
+  int value = 0;
+  const char* digits = q;
+  while (q != end && is_digit(*q)) {
+    if (value < 1000) value = value * 10 + (*q - '0');
+    ++q;
+  }
+  if (q == digits || value > 255) return -1;
+  while (q != end && is_space(*q)) ++q;
+  return q == end || *q == ';' ? value : -1;
+}
+
+bool read_checksum(const char* p, const char* end, Line& line) {
+  int value = checksum_at(p, end);
+  if (value < 0) return false;
+  line.has_checksum = true;
+  line.checksum = value;
+  return true;
+}
+
+}  // namespace
+
+// Where the code of a line ends: before its ';' comment and its "*nn"
+// checksum. The free-text commands (host commands, macros, M117 ...) need it
+// up front; ordinary commands find both on their way through the words.
+const char* Line::find_code_end(const char* p, const char* end) {
+  const char* code_end = end;
+  if (const void* semi = std::memchr(p, ';', static_cast<std::size_t>(end - p)); semi != nullptr) {
+    code_end = static_cast<const char*>(semi);
+    comment = std::string_view(code_end, static_cast<std::size_t>(end - code_end));
+    comment_pos = static_cast<std::size_t>(code_end - text.data());
+  }
+  const char* q = code_end;
+  while (q != p && is_space(q[-1])) --q;
+  const char* digits_end = q;
+  while (q != p && is_digit(q[-1])) --q;
+  if (q != p && q[-1] == '*' && q != digits_end && read_checksum(q - 1, code_end, *this)) code_end = q - 1;
+  return code_end;
+}
+
+// One forward pass for what slicers write ("G1 X10.5 Y3 E0.12 ; c"): the
+// comment, a checksum and the words are found as the scan reaches them.
 Line Line::parse(std::string_view text) {
   Line line;
   line.text = text;
-  const char* const begin = text.data();
-  const char* p = begin;
-  const char* end = p + text.size();
-
+  const char* p = text.data();
+  const char* const end = p + text.size();
   while (p != end && is_space(*p)) ++p;
-  // A ';' comment ends the code; find it once (M117 messages cannot hold ';').
-  const char* code_end = end;
-  if (p != end) {
-    if (const void* semi = std::memchr(p, ';', static_cast<std::size_t>(end - p)); semi != nullptr)
-      code_end = static_cast<const char*>(semi);
+  if (p == end) return line;
+  if (*p == ';') {
+    line.comment = std::string_view(p, static_cast<std::size_t>(end - p));
+    line.comment_pos = static_cast<std::size_t>(p - text.data());
+    return line;
   }
-  if (code_end != end) {
-    line.comment = std::string_view(code_end, static_cast<std::size_t>(end - code_end));
-    line.comment_pos = static_cast<std::size_t>(code_end - begin);
-  }
-  // Checksum "*nn" at the end of the code part.
-  {
-    const char* q = code_end;
-    while (q != p && is_space(q[-1])) --q;
-    const char* digits_end = q;
-    while (q != p && is_digit(q[-1])) --q;
-    if (q != p && q[-1] == '*' && q != digits_end) {
-      double v = 0;
-      if (parse_number(std::string_view(q, static_cast<std::size_t>(digits_end - q)), v) && v < 256) {
-        line.has_checksum = true;
-        line.checksum = static_cast<int>(v);
-        code_end = q - 1;
-      }
-    }
-  }
-  if (p == code_end) return line;
 
-  // Optional line number.
-  if ((*p == 'N' || *p == 'n') && p + 1 != code_end && is_digit(p[1])) {
+  // Optional line number ("N123 G1 ...").
+  if ((*p == 'N' || *p == 'n') && p + 1 != end && is_digit(p[1])) {
     const char* q = p + 1;
     long long n = 0;
-    while (q != code_end && is_digit(*q)) n = n * 10 + (*q++ - '0');
+    while (q != end && is_digit(*q)) {
+      if (n < (1LL << 58)) n = n * 10 + (*q - '0');
+      ++q;
+    }
     line.has_line_number = true;
     line.line_number = n;
     p = q;
-    while (p != code_end && is_space(*p)) ++p;
-    if (p == code_end) return line;
+    while (p != end && is_space(*p)) ++p;
+    if (p == end) return line;
+    if (*p == ';' || (*p == '*' && read_checksum(p, end, line))) {
+      line.find_code_end(p, end);
+      return line;
+    }
   }
 
   const char* command_start = p;
-  if (*p == '@') {
-    // Host command: "@pause", "@TOOLCHANGE 1".
-    ++p;
+  if (*p == '@' || (is_alpha(*p) && p + 1 != end && (is_alpha(p[1]) || p[1] == '_'))) {
+    // Host command ("@pause", "@TOOLCHANGE 1") or macro of two or more
+    // letters ("PAUSE", "PRINT_START EXTRUDER=210"): a name and free text.
+    const char* code_end = line.find_code_end(p, end);
+    line.kind = *p == '@' ? CommandKind::Host : CommandKind::Extended;
     while (p != code_end && !is_space(*p)) ++p;
-    line.kind = CommandKind::Host;
-    line.command = std::string_view(command_start, static_cast<std::size_t>(p - command_start));
-    line.argument = trim(std::string_view(p, static_cast<std::size_t>(code_end - p)));
-    return line;
-  }
-  if (is_alpha(*p) && p + 1 != code_end && (is_alpha(p[1]) || p[1] == '_')) {
-    // Macro: a name of two or more letters ("PAUSE", "PRINT_START EXTRUDER=210").
-    while (p != code_end && !is_space(*p)) ++p;
-    line.kind = CommandKind::Extended;
     line.command = std::string_view(command_start, static_cast<std::size_t>(p - command_start));
     line.argument = trim(std::string_view(p, static_cast<std::size_t>(code_end - p)));
     return line;
   }
   if (!is_alpha(*p)) {
-    line.malformed = true;
+    const char* code_end = line.find_code_end(p, end);
+    line.malformed = p != code_end;
     return line;
   }
 
@@ -211,72 +257,93 @@ Line Line::parse(std::string_view text) {
   line.kind = CommandKind::Standard;
   line.letter = upper(*p);
   ++p;
-  while (p != code_end && is_space(*p)) ++p;
-  if (p == code_end || !is_digit(*p)) {
+  while (p != end && is_space(*p)) ++p;
+  if (p == end || !is_digit(*p)) {
+    const char* code_end = line.find_code_end(command_start, end);
+    if (p > code_end) p = code_end;
     line.malformed = true;  // "G" alone, "Gx"
     line.command = std::string_view(command_start, static_cast<std::size_t>(p - command_start));
     return line;
   }
   int n = 0;
-  while (p != code_end && is_digit(*p)) {
+  while (p != end && is_digit(*p)) {
     if (n < 100000) n = n * 10 + (*p - '0');
     ++p;
   }
   line.number = n;
-  if (p != code_end && *p == '.' && p + 1 != code_end && is_digit(p[1])) {
+  if (p + 1 < end && *p == '.' && is_digit(p[1])) {
     ++p;
-    int s = 0;
-    while (p != code_end && is_digit(*p)) s = s * 10 + (*p++ - '0');
-    line.subcode = s;
+    int sub = 0;
+    while (p != end && is_digit(*p)) {
+      if (sub < 100000) sub = sub * 10 + (*p - '0');
+      ++p;
+    }
+    line.subcode = sub;
   }
   line.command = std::string_view(command_start, static_cast<std::size_t>(p - command_start));
   if (takes_string_argument(line.letter, line.number)) {
+    const char* code_end = line.find_code_end(p, end);
     line.argument = trim(std::string_view(p, static_cast<std::size_t>(code_end - p)));
     return line;
   }
 
   // Words.
-  while (p != code_end) {
-    char c = *p;
+  Word spare;
+  while (p != end) {
+    const char c = *p;
+    if (c == ' ') {
+      ++p;
+      continue;
+    }
+    if (c == ';') {
+      line.comment = std::string_view(p, static_cast<std::size_t>(end - p));
+      line.comment_pos = static_cast<std::size_t>(p - text.data());
+      break;
+    }
+    if (is_alpha(c)) {
+      Word* w = line.count_ < kMaxWords ? ::new (&line.words_.at[line.count_++]) Word() : &spare;
+      if (w == &spare) line.malformed = true;
+      w->letter = upper(c);
+      ++p;
+      const char* value_start = p;
+      while (value_start != end && (*value_start == ' ' || *value_start == '\t')) ++value_start;
+      if (value_start != end && starts_number(*value_start)) {
+        w->has_value = scan_number(value_start, end, *w);
+        line.malformed = line.malformed || !w->has_value;  // "X-", "X1e309", "X1.2.3"
+        p = value_start + w->raw.size();
+      } else {
+        w->raw = std::string_view(p, 0);  // a flag: empty, placed right after its letter
+        if (p != end && is_alpha(*p)) line.malformed = true;  // "Xnan": a letter glued to letters is no flag word
+      }
+      continue;
+    }
     if (is_space(c)) {
       ++p;
       continue;
     }
     if (c == '(') {
-      // RepRap-style inline comment: skipped; the first one is kept as the comment.
+      // RepRap-style inline comment: skipped; the first one is kept as the
+      // comment (a ';' inside it still starts the line's comment).
       const char* close = p;
-      while (close != code_end && *close != ')') ++close;
-      if (close != code_end) ++close;
+      while (close != end && *close != ')' && *close != ';' && !(*close == '*' && checksum_at(close, end) >= 0)) ++close;
+      if (close != end && *close == ')') ++close;
       if (line.comment.empty()) {
         line.comment = std::string_view(p, static_cast<std::size_t>(close - p));
-        line.comment_pos = static_cast<std::size_t>(p - begin);
+        line.comment_pos = static_cast<std::size_t>(p - text.data());
       }
       p = close;
       continue;
     }
-    if (!is_alpha(c)) {
-      line.malformed = true;
-      ++p;
-      continue;
-    }
-    Word w;
-    w.letter = upper(c);
-    ++p;
-    const char* value_start = p;
-    while (value_start != code_end && (*value_start == ' ' || *value_start == '\t')) ++value_start;
-    if (value_start != code_end && starts_number(*value_start)) {
-      bool ok = scan_number(value_start, code_end, w);
-      p = value_start + w.raw.size();
-      if (ok) {
-        w.has_value = true;
-      } else {
-        line.malformed = true;  // "X-", "X1e309", "X1.2.3"
+    if (c == '*' && read_checksum(p, end, line)) {
+      if (const void* semi = std::memchr(p, ';', static_cast<std::size_t>(end - p)); semi != nullptr) {
+        const char* at = static_cast<const char*>(semi);
+        line.comment = std::string_view(at, static_cast<std::size_t>(end - at));
+        line.comment_pos = static_cast<std::size_t>(at - text.data());
       }
-    } else {
-      w.raw = std::string_view(p, 0);  // a flag: empty, placed right after its letter
-      if (p != code_end && is_alpha(*p)) line.malformed = true;  // "Xnan": a letter glued to letters is no flag word
+      break;
     }
-    line.add_word(w);
+    line.malformed = true;
+    ++p;
   }
   return line;
 }

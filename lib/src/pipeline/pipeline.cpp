@@ -116,7 +116,6 @@ void Pipeline::finish() {
     Emitter& out = *links_[k + 1];
     if (links_[k]->own_) last = &links_[k]->state_;
     out.cursor_ = out.own_ ? &out.state_ : last;
-    out.upstream_ = last;
     stages_[k]->finish(out);
   }
 }

@@ -2,33 +2,7 @@
 
 namespace gcode {
 
-void Emitter::deliver(const TrackedLine& t) {
-  if (!next_->enabled()) {
-    // A switched-off stage is skipped: its output is its input.
-    next_out_->pass(t);
-    return;
-  }
-  Emitter& out = *next_out_;
-  out.cursor_ = &t.before;
-  out.upstream_ = &t.before;
-  out.input_line_ = t.raw.number;
-  out.region_ = t.region;
-  out.layer_ = t.layer;
-  out.feature_ = t.feature;
-  next_->line(t, out);
-}
-
-void Emitter::pass(const TrackedLine& t) {
-  upstream_ = &t.state;
-  if (next_ == nullptr) {
-    cursor_ = &t.state;
-    return;
-  }
-  if (!own_) {
-    deliver(t);
-    cursor_ = &t.state;
-    return;
-  }
+void Emitter::pass_changed(const TrackedLine& t) {
   // The stream here was changed upstream: the line acts on this link's own
   // state, and once that equals the input's again the link follows it.
   before_ = state_;
@@ -42,9 +16,7 @@ void Emitter::pass(const TrackedLine& t) {
 }
 
 void Emitter::replace(const TrackedLine& t, std::string_view text) {
-  upstream_ = &t.before;
   deliver_new(text, t.raw.ending, LineOrigin::Changed, &t);
-  upstream_ = &t.state;
   if (own_ && same_machine(state_, t.state)) {
     own_ = false;
     cursor_ = &t.state;
@@ -68,13 +40,15 @@ void Emitter::deliver_new(std::string_view text, std::string_view ending, LineOr
                           const TrackedLine* from) {
   if (next_ == nullptr) return;
   text_.assign(text.data(), text.size());
-  RawLine raw{text_, ending, input_line_, from != nullptr ? from->raw.offset : 0};
+  RawLine raw{text_, ending, input_line(), from != nullptr ? from->raw.offset : 0};
   Line line = parse_ ? Line::parse(text_) : Line();
+  const Region region = this->region();
+  const int layer = layer_index(), feature = this->feature();
   if (!track_) {
     // Nobody after this reads states: the new line carries the current one.
     Move move;
     const MachineState& here = *cursor_;
-    deliver(TrackedLine{raw, line, move, here, here, region_, layer_, feature_, origin});
+    deliver(TrackedLine{raw, line, move, here, here, region, layer, feature, origin});
     return;
   }
   if (!own_) {
@@ -84,11 +58,12 @@ void Emitter::deliver_new(std::string_view text, std::string_view ending, LineOr
   before_ = state_;
   Move move = state_.apply(line);
   cursor_ = &state_;
-  deliver(TrackedLine{raw, line, move, before_, state_, region_, layer_, feature_, origin});
+  deliver(TrackedLine{raw, line, move, before_, state_, region, layer, feature, origin});
 }
 
 void Emitter::layer(const LayerInfo& info, const MachineState& before) {
-  upstream_ = &before;
+  if (line_ != nullptr) feature_ = line_->feature;
+  line_ = nullptr;
   const MachineState& here = own_ ? state_ : before;
   cursor_ = &here;
   region_ = Region::Layer;
@@ -99,16 +74,17 @@ void Emitter::layer(const LayerInfo& info, const MachineState& before) {
     out.layer(info, here);
     return;
   }
+  // Lines the next stage adds before it passes the event on end the
+  // previous layer: its own out.layer() moves its context to the new one.
+  out.line_ = nullptr;
   out.cursor_ = &here;
-  out.upstream_ = &here;
-  out.region_ = Region::Layer;
-  out.layer_ = info.index;
   out.input_line_ = info.first_line;
   next_->layer(info, here, out);
 }
 
 void Emitter::end_code(const EndCodeInfo& info, const MachineState& before) {
-  upstream_ = &before;
+  if (line_ != nullptr) feature_ = line_->feature;
+  line_ = nullptr;
   const MachineState& here = own_ ? state_ : before;
   cursor_ = &here;
   region_ = Region::EndCode;
@@ -118,10 +94,8 @@ void Emitter::end_code(const EndCodeInfo& info, const MachineState& before) {
     out.end_code(info, here);
     return;
   }
+  out.line_ = nullptr;
   out.cursor_ = &here;
-  out.upstream_ = &here;
-  out.region_ = Region::EndCode;
-  out.layer_ = layer_;
   out.input_line_ = info.first_line;
   next_->end_code(info, here, out);
 }

@@ -29,14 +29,18 @@ class Fixed {
   static constexpr Fixed from_units(std::int64_t units) { return Fixed(clamp(units)); }
   // mantissa x 10^-decimals, as a word is written ("-.80": -80, 2). Exact
   // for up to nine decimals; more are rounded half away from zero.
-  static Fixed from_decimal(std::int64_t mantissa, int decimals);
+  static Fixed from_decimal(std::int64_t mantissa, int decimals) {
+    if (decimals >= 0 && decimals <= kDecimals) return from_units(mul_sat(mantissa, kScale[kDecimals - decimals]));
+    return from_decimal_slow(mantissa, decimals);
+  }
   // Rounded half away from zero to 10^-9; NaN is 0, infinities clamp.
   static Fixed from_double(double value);
   static constexpr Fixed from_int(std::int64_t whole) { return from_units(mul_sat(whole, kOne)); }
 
   constexpr std::int64_t units() const { return units_; }
-  // Exactly the double nearest to the decimal (one correctly rounded division).
-  double to_double() const;
+  // Exactly the double nearest to the decimal: below 2^53 the integer is
+  // exact, so one IEEE division rounds correctly, as parsing the text does.
+  double to_double() const { return static_cast<double>(units_) / 1e9; }
   // The value rounded to `decimals` (0..9) digits, half away from zero, in
   // units of 10^-decimals: what format_scaled writes.
   std::int64_t scaled(int decimals) const;
@@ -57,6 +61,8 @@ class Fixed {
   friend constexpr auto operator<=>(Fixed a, Fixed b) { return a.units_ <=> b.units_; }
 
  private:
+  static constexpr std::int64_t kScale[] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000, 100000000, 1000000000};
+  static Fixed from_decimal_slow(std::int64_t mantissa, int decimals);
   constexpr explicit Fixed(std::int64_t units) : units_(units) {}
   static constexpr std::int64_t clamp(std::int64_t u) { return u > kMax ? kMax : (u < -kMax ? -kMax : u); }
   static constexpr std::int64_t add_sat(std::int64_t a, std::int64_t b) {

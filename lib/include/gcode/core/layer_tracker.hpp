@@ -113,6 +113,7 @@ class LayerTracker {
 
  private:
   struct Item {
+    Line line;                 // parsed once; its views are moved onto the arena when emitted
     std::size_t text_pos = 0;
     std::uint32_t text_len = 0;
     std::uint8_t ending_len = 0;
@@ -123,12 +124,25 @@ class LayerTracker {
     int feature = -1;
     CommentInfo marker;  // only marker / z / height fields are kept
   };
+  // Held lines. Slots are reused, not rebuilt: an Item is large (the parsed
+  // line, the state after it) and a third of a typical file passes through.
   struct Held {
-    std::vector<Item> items;
+    std::vector<Item> slots;
+    std::size_t count = 0;
     std::string arena;
     void clear() {
-      items.clear();
+      count = 0;
       arena.clear();
+    }
+    std::size_t size() const { return count; }
+    bool empty() const { return count == 0; }
+    Item& operator[](std::size_t i) { return slots[i]; }
+    const Item& operator[](std::size_t i) const { return slots[i]; }
+    const Item& front() const { return slots[0]; }
+    const Item& back() const { return slots[count - 1]; }
+    Item& next_slot() {
+      if (count == slots.size()) slots.emplace_back();
+      return slots[count++];
     }
     std::size_t add(const RawLine& raw);
   };

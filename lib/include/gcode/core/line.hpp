@@ -99,13 +99,19 @@ class Line {
   bool is_m(int n) const { return is('M', n); }
   bool is_move() const { return kind == CommandKind::Standard && letter == 'G' && number >= 0 && number <= 3 && subcode < 0; }
   bool is_blank() const { return kind == CommandKind::None && comment.empty(); }
+  // Copies this line into `out` with every view moved onto `text`: the same
+  // bytes at another place (a line kept for later in another buffer). Only
+  // the words in use are copied. Addresses are compared as integers, so this
+  // line's own text may be gone by now.
+  void copy_onto(std::string_view text, Line& out) const;
+
   // The text of the comment without its marker and surrounding spaces.
   std::string_view comment_text() const;
   // The code part: the text before the comment, trailing blanks removed.
   std::string_view code() const;
 
  private:
-  void add_word(const Word& w);
+  const char* find_code_end(const char* p, const char* end);
 
   // Left uninitialised: only the first count_ words are ever read, and
   // clearing all of them for every line was a quarter of Line::parse.

@@ -54,15 +54,16 @@ class Emitter {
   // The state after everything emitted so far (what an inserted line starts
   // from); valid until the next call into the pipeline.
   const MachineState& state() const { return *cursor_; }
-  Region region() const { return region_; }
-  int layer_index() const { return layer_; }
-  int feature() const { return feature_; }
+  Region region() const { return line_ != nullptr ? line_->region : region_; }
+  int layer_index() const { return line_ != nullptr ? line_->layer : layer_; }
+  int feature() const { return line_ != nullptr ? line_->feature : feature_; }
   // The input line the current line or event came with (for messages).
-  std::uint64_t input_line() const { return input_line_; }
+  std::uint64_t input_line() const { return line_ != nullptr ? line_->raw.number : input_line_; }
 
  private:
   friend class Pipeline;
   void deliver(const TrackedLine& t);
+  void pass_changed(const TrackedLine& t);
   void deliver_new(std::string_view text, std::string_view ending, LineOrigin origin, const TrackedLine* from);
 
   Stage* next_ = nullptr;         // null: the end of the chain
@@ -70,11 +71,12 @@ class Emitter {
   bool track_ = false;            // a later stage reads states: new lines are applied
   bool parse_ = false;            // a later stage reads parsed lines
   bool own_ = false;              // the stream here differs from upstream: this link keeps its own state
-  const MachineState* cursor_ = nullptr;    // the stream's state here, now
-  const MachineState* upstream_ = nullptr;  // the input's state at the same point
+  const MachineState* cursor_ = nullptr;  // the stream's state here, now
+  const TrackedLine* line_ = nullptr;     // the line being handled (the context of new lines), or null
   MachineState state_;            // the stream's state here while own_
   MachineState before_;
   std::string text_;              // the text of a new line while it is delivered
+  // The context when no line is current (after an event).
   Region region_ = Region::StartCode;
   int layer_ = 0;
   int feature_ = -1;
@@ -110,5 +112,33 @@ class Stage {
  private:
   bool enabled_ = true;
 };
+
+// The hot path, inline: a line that goes on unchanged through a link that
+// follows its input costs a check, two stores and the next stage's call.
+inline void Emitter::deliver(const TrackedLine& t) {
+  Emitter& out = *next_out_;
+  if (!next_->enabled()) {
+    // A switched-off stage is skipped: its output is its input.
+    out.pass(t);
+    return;
+  }
+  out.cursor_ = &t.before;
+  out.line_ = &t;
+  next_->line(t, out);
+  // The line's views end here; an insert made later (finish) takes the
+  // context of the last event.
+  out.line_ = nullptr;
+}
+
+inline void Emitter::pass(const TrackedLine& t) {
+  if (next_ != nullptr) {
+    if (own_) {
+      pass_changed(t);
+      return;
+    }
+    deliver(t);
+  }
+  cursor_ = &t.state;
+}
 
 }  // namespace gcode
