@@ -5,8 +5,8 @@
 //   copy    split + OutputBuffer: every line written back from its raw bytes
 //   parse   split + Line::parse
 //   state   parse + MachineState::apply
-//   layers  parse + state + LayerTracker (the sink only counts)
-//   full    layers + every line written back: what `gc-layers --extract 1-` does
+//   layers  parse + state + LayerTracker, through the pipeline (a stage only counts)
+//   full    layers + GcodeWriter: the pipeline every filter runs, with nothing to change
 //
 // Usage: parse_bench STAGE FILE
 // The copy and full stages write to standard output; every stage prints one
@@ -28,6 +28,8 @@
 #include "gcode/core/line_reader.hpp"
 #include "gcode/core/machine_state.hpp"
 #include "gcode/core/output_buffer.hpp"
+#include "gcode/pipeline/pipeline.hpp"
+#include "gcode/pipeline/writer.hpp"
 
 namespace {
 
@@ -80,43 +82,39 @@ Figures parse(int in, bool with_state) {
   return f;
 }
 
-// Counts what the tracker reports and, in the full stage, writes every line.
-class BenchSink : public gcode::LayerSink {
+// Counts what reaches it; passes every line on.
+class BenchStage : public gcode::Stage {
  public:
-  explicit BenchSink(gcode::OutputBuffer* writer) : writer_(writer) {}
-  void on_layer(const gcode::LayerInfo& layer, const gcode::MachineState&) override { z_sum += layer.z; }
-  void on_line(const gcode::TrackedLine& line) override {
+  void layer(const gcode::LayerInfo& layer, const gcode::MachineState& before, gcode::Emitter& out) override {
+    z_sum += layer.z;
+    out.layer(layer, before);
+  }
+  void line(const gcode::TrackedLine& t, gcode::Emitter& out) override {
     ++lines;
-    bytes += line.raw.size();
-    filament += line.move.filament;
-    if (writer_ != nullptr) {
-      writer_->write(line.raw.text);
-      writer_->write(line.raw.ending);
-    }
+    bytes += t.raw.size();
+    filament += t.move.filament;
+    out.pass(t);
   }
   std::uint64_t lines = 0;
   std::uint64_t bytes = 0;
   double filament = 0;
   double z_sum = 0;
-
- private:
-  gcode::OutputBuffer* writer_;
 };
 
 Figures layers(int in, int out, bool write) {
-  gcode::LineReader reader(in);
-  gcode::OutputBuffer writer(out);
-  BenchSink sink(write ? &writer : nullptr);
+  gcode::OutputBuffer buffer(out);
   gcode::LayerMarkers markers;
-  gcode::LayerTracker tracker(sink, markers);
-  gcode::RawLine raw;
-  while (reader.next(raw)) tracker.push(raw);
-  tracker.finish();
-  writer.flush();
+  gcode::Pipeline pipeline(markers);
+  BenchStage counter;
+  gcode::GcodeWriter writer(buffer);
+  pipeline.add(counter);
+  if (write) pipeline.add(writer);
+  pipeline.run(in);
+  buffer.flush();
   Figures f;
-  f.lines = sink.lines;
-  f.bytes = sink.bytes;
-  f.check = sink.filament + sink.z_sum + tracker.layer_count();
+  f.lines = counter.lines;
+  f.bytes = counter.bytes;
+  f.check = counter.filament + counter.z_sum + pipeline.tracker().layer_count();
   return f;
 }
 

@@ -6,9 +6,15 @@
 # Builds a Release tree in build-bench, makes bench/data/large.gcode (>= 150 MB
 # of real PrusaSlicer G-code, see make-large.sh) and a half-size copy, then
 # times, with a warm page cache and the output on the same disk:
-#   cat FILE > OUT                       the ceiling
+#   cat FILE > OUT                       the ceiling the issue names; GNU cat copies
+#                                        a file to a file with copy_file_range, in
+#                                        the kernel, which no filter can do
+#   dd bs=256k (read + write)            the ceiling of a program that reads the
+#                                        bytes and writes them: the filters' own
 #   gc-layers --extract 1- FILE > OUT    parse, state, layers, write every line
 #                                        (and checks OUT is identical to FILE)
+#   gc-subdivide, gc-pause-at            as pass-through filters (nothing to split,
+#                                        one pause)
 #   parse_bench STAGE FILE > OUT         the same pass piece by piece
 # then runs every bench/parts/*.sh (other tools' benchmarks) and prints a
 # summary table. Environment: GC_BENCH_RUNS (best of N, default 5),
@@ -64,6 +70,7 @@ echo
 rows=()
 cat_mbs=""
 cat_cpu_mbs=""
+dd_mbs=""
 # bench_one NAME NOTE CMD...: measures CMD on the large file (its last
 # argument), once more on the half-size file for memory, and records the row.
 bench_one() {
@@ -80,14 +87,18 @@ bench_one() {
   [ -n "$cat_mbs" ] || cat_mbs=$mbs
   [ -n "$cat_cpu_mbs" ] || cat_cpu_mbs=$cpu_mbs
   ratio=$(awk -v a="$mbs" -v c="$cat_mbs" 'BEGIN { printf "%.0f%%", 100 * a / c }')
+  dd_ratio=-
+  if [ -n "$dd_mbs" ]; then dd_ratio=$(awk -v a="$mbs" -v c="$dd_mbs" 'BEGIN { printf "%.0f%%", 100 * a / c }'); fi
   cpu_ratio=$(awk -v a="$cpu_mbs" -v c="$cat_cpu_mbs" 'BEGIN { if (a == "-" || c == "-") print "-"; else printf "%.0f%%", 100 * a / c }')
-  printf '%-36s %7.3f s %7s MB/s %5s M lines/s %4s of cat | CPU %5s s %7s MB/s %4s of cat | RSS %s kB, half file %s kB\n' \
-    "$name" "$secs" "$mbs" "$lps" "$ratio" "$cpu" "$cpu_mbs" "$cpu_ratio" "$rss" "$rss_half"
-  rows+=("$(printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s' "$name" "$mbs" "$lps" "$ratio" "$cpu_mbs" "$cpu_ratio" "$rss/$rss_half" "$note")")
+  printf '%-36s %7.3f s %7s MB/s %5s M lines/s %4s of cat %4s of dd | CPU %5s s %7s MB/s | RSS %s kB, half file %s kB\n' \
+    "$name" "$secs" "$mbs" "$lps" "$ratio" "$dd_ratio" "$cpu" "$cpu_mbs" "$rss" "$rss_half"
+  rows+=("$(printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s' "$name" "$mbs" "$lps" "$ratio" "$dd_ratio" "$cpu_mbs" "$rss/$rss_half" "$note")")
 }
 
 echo "== the full pass against cat"
-bench_one "cat FILE > OUT" "the ceiling" cat
+bench_one "cat FILE > OUT" "the ceiling (copy_file_range: the kernel copies)" cat
+bench_one "dd bs=256k (read + write)" "the ceiling of a program that reads and writes" "$here/dd-copy.sh"
+dd_mbs=$(printf '%s\n' "${rows[1]}" | cut -f2)
 bench_one "gc-layers --extract 1- FILE > OUT" "full pass, the target is >= 40% of cat" "$bin/gc-layers" --extract 1-
 if cmp -s "$out" "$file"; then
   echo "gc-layers --extract 1-: output identical to the input"
@@ -95,6 +106,8 @@ else
   echo "bench: gc-layers --extract 1- changed the file" >&2
   exit 1
 fi
+bench_one "gc-subdivide --max 1000 (nothing to split)" "pass-through filter" "$bin/gc-subdivide" --max 1000
+bench_one "gc-pause-at --before-layer 4500 --park 0,200" "pass-through filter with one pause" "$bin/gc-pause-at" --before-layer 4500 --park 0,200
 echo
 echo "== the same pass piece by piece (bench/parse_bench)"
 bench_one "split (LineReader)" "block reads, lines split in place" "$bin/parse_bench" split
@@ -122,9 +135,12 @@ if [ ${#parts[@]} -gt 0 ]; then
     fi
     grep -v '^BENCH_ROW' "$tmp/part.out" || true
     while IFS=$'\t' read -r _ name mbs lps rss note; do
-      ratio=-
-      if [ "$mbs" != "-" ]; then ratio=$(awk -v a="$mbs" -v c="$cat_mbs" 'BEGIN { printf "%.0f%%", 100 * a / c }'); fi
-      rows+=("$(printf '%s\t%s\t%s\t%s\t-\t-\t%s\t%s' "$name" "$mbs" "$lps" "$ratio" "$rss" "$note")")
+      ratio=- dd_ratio=-
+      if [ "$mbs" != "-" ]; then
+        ratio=$(awk -v a="$mbs" -v c="$cat_mbs" 'BEGIN { printf "%.0f%%", 100 * a / c }')
+        dd_ratio=$(awk -v a="$mbs" -v c="$dd_mbs" 'BEGIN { printf "%.0f%%", 100 * a / c }')
+      fi
+      rows+=("$(printf '%s\t%s\t%s\t%s\t%s\t-\t%s\t%s' "$name" "$mbs" "$lps" "$ratio" "$dd_ratio" "$rss" "$note")")
     done < <(grep '^BENCH_ROW' "$tmp/part.out" || true)
   done
 fi
@@ -132,8 +148,8 @@ fi
 echo
 echo "== summary ($(gc_rate "$bytes" 1 1e6) MB, $lines lines; peak RSS: large file / half file; load average $(cut -d' ' -f1-3 /proc/loadavg))"
 echo "(wall: best elapsed time; CPU: best user+system time, steadier when the machine is busy)"
-printf '%-36s %8s %9s %7s %8s %7s %15s  %s\n' "pass" "MB/s" "M lines/s" "of cat" "CPU MB/s" "of cat" "peak RSS kB" "note"
+printf '%-44s %8s %9s %7s %7s %8s %15s  %s\n' "pass" "MB/s" "M lines/s" "of cat" "of dd" "CPU MB/s" "peak RSS kB" "note"
 for row in "${rows[@]}"; do
-  IFS=$'\t' read -r name mbs lps ratio cpu_mbs cpu_ratio rss note <<<"$row"
-  printf '%-36s %8s %9s %7s %8s %7s %15s  %s\n' "$name" "$mbs" "$lps" "$ratio" "$cpu_mbs" "$cpu_ratio" "$rss" "$note"
+  IFS=$'\t' read -r name mbs lps ratio dd_ratio cpu_mbs rss note <<<"$row"
+  printf '%-44s %8s %9s %7s %7s %8s %15s  %s\n' "$name" "$mbs" "$lps" "$ratio" "$dd_ratio" "$cpu_mbs" "$rss" "$note"
 done
