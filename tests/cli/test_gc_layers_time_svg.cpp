@@ -82,7 +82,7 @@ TEST_CASE("gc-layers --time is within 5 % of PrusaSlicer and 10 % of Cura", "[gc
     CHECK(sum == Approx(ours).margin(slack));
     ++compared;
   }
-  CHECK(compared == 7);
+  CHECK(compared == 8);  // 3 Cura + 5 PrusaSlicer fixtures carry an estimate
 }
 
 TEST_CASE("gc-layers --time text table has time columns and a total", "[gc-layers][time]") {

@@ -222,6 +222,21 @@ TEST_CASE("usage errors exit 2 with a message", "[gc-subdivide][usage]") {
   CHECK(run(gctest::tool_command("gc-subdivide", "--version")).out.rfind("gc-subdivide ", 0) == 0);
 }
 
+// Issue 11: this file's E values are amounts (relative) though it never says
+// M83; its config block says use_relative_e_distances = 1. Pieces must share
+// out each amount, so read as relative (an M83 put in front of both texts) the
+// output pushes exactly the filament of the input.
+TEST_CASE("a file without an E mode keeps its filament when read as the slicer wrote it", "[gc-subdivide][e-mode]") {
+  std::string input = read_file(fixture_path("prusa_cube_0.2_sailfish_rel_no_emode.gcode"));
+  auto r = run(gctest::tool_command("gc-subdivide", "--max 2"), input);
+  REQUIRE(r.status == 0);
+  CHECK(gctest::e_mode_commands(r.out) == 0);
+  double in = gctest::replay_state("M83\n" + input).filament_total;
+  double out = gctest::replay_state("M83\n" + r.out).filament_total;
+  CHECK(in == Approx(180.96867).margin(1e-5));  // the sum of its E words: 40 mm of purge, 140.97 net in the layers
+  CHECK(out == Approx(in).margin(1e-6));
+}
+
 // Every "--name" in a text (roff writes a dash as "\-").
 static std::set<std::string> long_options(std::string text) {
   for (std::size_t p; (p = text.find("\\-")) != std::string::npos;) text.erase(p, 1);
