@@ -20,23 +20,114 @@ std::string_view trim(std::string_view s) {
 
 bool read_number(std::string_view s, double& v) { return parse_number(trim(s), v); }
 
-// "; layer 3, Z = 0.600" (Simplify3D); "; layer end" is not a marker.
-bool parse_simplify3d(std::string_view c, CommentInfo& info) {
-  if (!starts_with(c, "layer ")) return false;
-  std::string_view rest = c.substr(6);
-  auto comma = rest.find(',');
-  if (comma == std::string_view::npos) return false;
-  double n = 0;
-  if (!read_number(rest.substr(0, comma), n)) return false;
-  auto eq = rest.find('=', comma);
-  if (eq == std::string_view::npos) return false;
-  double z = 0;
-  if (!read_number(rest.substr(eq + 1), z)) return false;
-  info.marker = MarkerKind::Simplify3D;
+void skip_blanks(std::string_view& s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+}
+
+bool skip(std::string_view& s, std::string_view prefix) {
+  if (!starts_with(s, prefix)) return false;
+  s.remove_prefix(prefix.size());
+  return true;
+}
+
+// Reads the number at the front of `s` ("0.25 @ 2" -> 0.25) and drops it.
+bool take_number(std::string_view& s, double& v) {
+  std::size_t n = 0;
+  if (n < s.size() && (s[n] == '-' || s[n] == '+')) ++n;
+  while (n < s.size() && ((s[n] >= '0' && s[n] <= '9') || s[n] == '.')) ++n;
+  if (!parse_number(s.substr(0, n), v)) return false;
+  s.remove_prefix(n);
+  return true;
+}
+
+// A layer number: a whole number at the front of `s`, dropped from it.
+bool take_layer_number(std::string_view& s, long& number) {
+  double v = 0;
+  std::string_view rest = s;
+  if (!take_number(rest, v) || v != static_cast<double>(static_cast<long>(v))) return false;
+  number = static_cast<long>(v);
+  s = rest;
+  return true;
+}
+
+void set_number(CommentInfo& info, long n) {
   info.has_number = true;
-  info.number = static_cast<long>(n);
+  info.number = n;
+}
+void set_z(CommentInfo& info, double z) {
   info.has_z = true;
   info.z = z;
+}
+void set_height(CommentInfo& info, double h) {
+  info.has_height = true;
+  info.height = h;
+}
+
+// "; layer 3, Z = 0.600" (Simplify3D); "; layer end" is not a marker.
+bool parse_simplify3d(std::string_view c, CommentInfo& info) {
+  if (!skip(c, "layer ")) return false;
+  long n = 0;
+  if (!take_layer_number(c, n) || !skip(c, ",")) return false;
+  auto eq = c.find('=');
+  double z = 0;
+  if (eq == std::string_view::npos || !read_number(c.substr(eq + 1), z)) return false;
+  info.marker = MarkerKind::Simplify3D;
+  set_number(info, n);
+  set_z(info, z);
+  return true;
+}
+
+// "; BEGIN_LAYER_OBJECT z=0.263 z_thickness=0.263" (KISSlicer; 1.1 writes
+// only z=). The layer's Z comes in the first travel after it.
+bool parse_kisslicer(std::string_view c, CommentInfo& info) {
+  if (!skip(c, "BEGIN_LAYER_OBJECT")) return false;
+  info.marker = MarkerKind::KISSlicer;
+  double v = 0;
+  skip_blanks(c);
+  if (skip(c, "z=") && take_number(c, v)) set_z(info, v);
+  skip_blanks(c);
+  if (skip(c, "z_thickness=") && take_number(c, v)) set_height(info, v);
+  return true;
+}
+
+// ";; --- layer 12 (0.200 @ 2.6) ---" (Kiri:Moto, written when the device
+// has no layer G-code): 0-based number, layer height, Z. Before the Z move.
+bool parse_kiri_moto(std::string_view c, CommentInfo& info) {
+  c.remove_prefix(1);  // the second ';'
+  skip_blanks(c);
+  long n = 0;
+  if (!skip(c, "--- layer ") || !take_layer_number(c, n)) return false;
+  info.marker = MarkerKind::KiriMoto;
+  set_number(info, n);
+  double height = 0, z = 0;
+  skip_blanks(c);
+  if (!skip(c, "(") || !take_number(c, height)) return true;
+  skip_blanks(c);
+  if (!skip(c, "@")) return true;
+  skip_blanks(c);
+  if (!take_number(c, z)) return true;
+  set_height(info, height);
+  set_z(info, z);
+  return true;
+}
+
+// "(<layer> 0.4 )" (Skeinforge, SFACT): the layer's Z.
+bool parse_skeinforge(std::string_view c, CommentInfo& info) {
+  if (!skip(c, "<layer>")) return false;
+  skip_blanks(c);
+  double z = 0;
+  if (!take_number(c, z)) return false;
+  info.marker = MarkerKind::Skeinforge;
+  set_z(info, z);
+  return true;
+}
+
+// "(Slice 0, 1 Extruder)" (Miracle-Grue, MakerWare's engine): 0-based.
+bool parse_miracle_grue(std::string_view c, CommentInfo& info) {
+  long n = 0;
+  if (!skip(c, "Slice ") || !take_layer_number(c, n) || !skip(c, ",")) return false;
+  info.marker = MarkerKind::MiracleGrue;
+  set_number(info, n);
   return true;
 }
 
@@ -111,9 +202,32 @@ CommentInfo LayerMarkers::classify(std::string_view c) const {
     case 'l':
       if (!user_) parse_simplify3d(c, info);
       return info;
+    case 'B':
+      if (!user_) parse_kisslicer(c, info);
+      return info;
+    case ';':
+      if (!user_) parse_kiri_moto(c, info);
+      return info;
+    case '<':
+      if (!user_) parse_skeinforge(c, info);
+      return info;
+    case 'S':
+      if (!user_) parse_miracle_grue(c, info);
+      return info;
     default:
       return info;
   }
+}
+
+CommentInfo LayerMarkers::classify_move(std::string_view c) const {
+  CommentInfo info;
+  // Most moves carry no comment or a feature one ("; perimeter"): one byte decides.
+  if (user_ || c.empty() || c.front() != 'm' || !skip(c, "move to next layer")) return info;
+  info.marker = MarkerKind::LayerMove;
+  skip_blanks(c);
+  long n = 0;
+  if (skip(c, "(") && take_layer_number(c, n) && skip(c, ")")) set_number(info, n);
+  return info;
 }
 
 }  // namespace gcode
