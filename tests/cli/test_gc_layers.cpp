@@ -107,7 +107,7 @@ TEST_CASE("each layer's Z and the filament are the slicer's on the fixtures with
     CHECK(j["summary"]["filament_mm"].get<double>() == Approx(expected).epsilon(0.001));
     ++checked;
   }
-  CHECK(checked == 6);
+  CHECK(checked == 7);
 }
 
 TEST_CASE("unmarked and Cura layers sit at the heights they extrude at", "[gc-layers][fixtures]") {
