@@ -131,6 +131,13 @@ bool parse_miracle_grue(std::string_view c, CommentInfo& info) {
   return true;
 }
 
+// A built-in marker parser, unless a user pattern replaces the built-in markers.
+CommentInfo built_in(bool enabled, bool (*parse)(std::string_view, CommentInfo&), std::string_view c,
+                     CommentInfo& info) {
+  if (enabled) parse(c, info);
+  return info;
+}
+
 }  // namespace
 
 LayerMarkers::LayerMarkers() = default;
@@ -199,25 +206,17 @@ CommentInfo LayerMarkers::classify(std::string_view c) const {
         info.height = v;
       }
       return info;
-    case 'l':
-      if (!user_) parse_simplify3d(c, info);
-      return info;
-    case 'B':
-      if (!user_) parse_kisslicer(c, info);
-      return info;
-    case ';':
-      if (!user_) parse_kiri_moto(c, info);
-      return info;
-    case '<':
-      if (!user_) parse_skeinforge(c, info);
-      return info;
-    case 'S':
-      if (!user_) parse_miracle_grue(c, info);
-      return info;
+    // Markers with a syntax of their own, by their first character.
+    case 'l': return built_in(!user_, parse_simplify3d, c, info);
+    case 'B': return built_in(!user_, parse_kisslicer, c, info);
+    case ';': return built_in(!user_, parse_kiri_moto, c, info);
+    case '<': return built_in(!user_, parse_skeinforge, c, info);
+    case 'S': return built_in(!user_, parse_miracle_grue, c, info);
     default:
       return info;
   }
 }
+
 
 CommentInfo LayerMarkers::classify_move(std::string_view c) const {
   CommentInfo info;
