@@ -43,6 +43,9 @@ TEST_CASE("Cura and ideaMaker and MatterSlice layer numbers from 0 and negative 
   c = comment_line("; LAYER:-3");  // MatterSlice raft base
   CHECK(c.marker == MarkerKind::CuraLayer);
   CHECK(c.number == -3);
+  // A number no layer has is no number (and no undefined conversion to long).
+  CHECK_FALSE(comment_line(";LAYER:1e300").has_number);
+  CHECK_FALSE(comment_line(";; --- layer 99999999999999999999 (0.2 @ 0.4) ---").has_number);
   // Header lines that name layers are not markers.
   CHECK(comment_line(";LAYER_COUNT:100").marker == MarkerKind::None);
   CHECK(comment_line(";Layer count: 299").marker == MarkerKind::None);

@@ -40,11 +40,14 @@ bool take_number(std::string_view& s, double& v) {
   return true;
 }
 
+// A layer number in range of a long (junk like "LAYER:1e300" is no number).
+bool in_layer_range(double v) { return v > -1e15 && v < 1e15; }
+
 // A layer number: a whole number at the front of `s`, dropped from it.
 bool take_layer_number(std::string_view& s, long& number) {
   double v = 0;
   std::string_view rest = s;
-  if (!take_number(rest, v) || v != static_cast<double>(static_cast<long>(v))) return false;
+  if (!take_number(rest, v) || !in_layer_range(v) || v != static_cast<double>(static_cast<long>(v))) return false;
   number = static_cast<long>(v);
   s = rest;
   return true;
@@ -161,7 +164,7 @@ CommentInfo LayerMarkers::classify(std::string_view c) const {
     if (user_->NumberOfCapturingGroups() > 0 ? RE2::PartialMatch(c, *user_, &number)
                                              : RE2::PartialMatch(c, *user_)) {
       info.marker = MarkerKind::User;
-      if (!number.empty() && parse_number(number, v)) {
+      if (!number.empty() && parse_number(number, v) && in_layer_range(v)) {
         info.has_number = true;
         info.number = static_cast<long>(v);
       }
@@ -179,7 +182,7 @@ CommentInfo LayerMarkers::classify(std::string_view c) const {
       if (user_) return info;
       if (starts_with(c, "LAYER_CHANGE")) {
         info.marker = MarkerKind::LayerChange;
-      } else if (starts_with(c, "LAYER:") && read_number(c.substr(6), v)) {
+      } else if (starts_with(c, "LAYER:") && read_number(c.substr(6), v) && in_layer_range(v)) {
         info.marker = MarkerKind::CuraLayer;
         info.has_number = true;
         info.number = static_cast<long>(v);
