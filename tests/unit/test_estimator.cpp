@@ -136,6 +136,16 @@ TEST_CASE("RepRapFirmware takes its own firmware retraction defaults unless the 
   CHECK(profiled.fw_retract_length == 3);
 }
 
+TEST_CASE("an arc is timed along its length and a helix back to its start is no Z move", "[estimator]") {
+  // Half circle r 5 at 100 mm/s: 5 pi mm, an exact trapezoid (junction deviation stops at 0).
+  double half = 5 * 3.141592653589793;
+  CHECK(run(with_setup({"G1 X0 Y0 F6000", "G4 S0", "G3 X10 Y0 I5 J0"})) == Approx(trapezoid(half, 0, 100, 0)).epsilon(1e-9));
+  // A full circle r 5 rising 1 mm: 31.4 mm of XY and 1 mm of Z. Its Z share
+  // (1/31.4 of 100 mm/s) is within Marlin's default Z limits (5 mm/s, 100 mm/s^2 / 0.032).
+  double circle = 10 * 3.141592653589793, helix = std::hypot(circle, 1.0);
+  CHECK(run(with_setup({"G1 X0 Y0 F6000", "G4 S0", "G2 Z1 I5 J0"})) == Approx(trapezoid(helix, 0, 100, 0)).epsilon(1e-9));
+}
+
 TEST_CASE("dwells, heating and homing add their time", "[estimator]") {
   gcode::EstimatorOptions o;
   o.home_time = 7;
