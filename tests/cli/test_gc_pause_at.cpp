@@ -505,3 +505,16 @@ TEST_CASE("gc-pause-at: --help and the man page name the same options", "[gc-pau
     CHECK(man.find(roff) != std::string::npos);
   }
 }
+
+// Issue 11: a file that never sets the E mode leaves it to the printer (a
+// start macro); a pause must not switch it (an M82 in a relative-E file makes
+// every later E a position, not an amount).
+TEST_CASE("gc-pause-at writes no E mode into a file that never set one", "[gc-pause-at][e-mode]") {
+  const std::string name = "prusa_cube_0.2_sailfish_rel_no_emode.gcode";
+  std::string original = read_file(fixture_path(name));
+  REQUIRE(gctest::e_mode_commands(original) == 0);
+  auto r = run(tool() + " --before-layer 10 " + quote(fixture_path(name)));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(gctest::e_mode_commands(r.out) == 0);
+}

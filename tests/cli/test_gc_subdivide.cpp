@@ -222,6 +222,31 @@ TEST_CASE("usage errors exit 2 with a message", "[gc-subdivide][usage]") {
   CHECK(run(gctest::tool_command("gc-subdivide", "--version")).out.rfind("gc-subdivide ", 0) == 0);
 }
 
+// Issue 11: this file's E values are amounts (relative) though it never says
+// M83; its config block says use_relative_e_distances = 1. Pieces must share
+// out each amount, so read as relative the output pushes exactly the filament
+// of the input. Read as relative: an M83 at the top and after each G90 (the
+// file's preamble has one, and MachineState, like Marlin, lets G90 make E
+// absolute again; Klipper, this profile's firmware, keeps E relative).
+TEST_CASE("a file without an E mode keeps its filament when read as the slicer wrote it", "[gc-subdivide][e-mode]") {
+  std::string input = read_file(fixture_path("prusa_cube_0.2_sailfish_rel_no_emode.gcode"));
+  auto r = run(gctest::tool_command("gc-subdivide", "--max 2"), input);
+  REQUIRE(r.status == 0);
+  CHECK(gctest::e_mode_commands(r.out) == 0);
+  auto as_relative = [](const std::string& text) {
+    std::string all = "M83\n";
+    for (const std::string& l : gctest::split_lines(text)) {
+      all += l;
+      if (gcode::Line::parse(l.substr(0, l.find_first_of("\r\n"))).is_g(90)) all += "M83\n";
+    }
+    return all;
+  };
+  double in = gctest::replay_state(as_relative(input)).filament_total;
+  double out = gctest::replay_state(as_relative(r.out)).filament_total;
+  CHECK(in == Approx(180.96867).margin(1e-5));  // the sum of its E words: 40 mm of purge, 140.97 net in the layers
+  CHECK(out == Approx(in).margin(1e-6));
+}
+
 // Every "--name" in a text (roff writes a dash as "\-").
 static std::set<std::string> long_options(std::string text) {
   for (std::size_t p; (p = text.find("\\-")) != std::string::npos;) text.erase(p, 1);

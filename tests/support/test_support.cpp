@@ -46,6 +46,13 @@ std::vector<std::string> fixture_names() {
   return names;
 }
 
+nlohmann::json expected_data(std::string_view fixture) {
+  std::string stem(fixture.substr(0, fixture.rfind(".gcode")));
+  fs::path path = fs::path(GC_FIXTURES_DIR) / "expected" / (stem + ".json");
+  if (!fs::exists(path)) return nullptr;
+  return nlohmann::json::parse(read_file(path.string()));
+}
+
 std::string temp_dir() {
   static std::atomic<int> counter{0};
   fs::path p = fs::temp_directory_path() /
@@ -110,6 +117,17 @@ std::vector<ReplayedMove> replay_moves(std::string_view text) {
     ++index;
   }
   return moves;
+}
+
+int e_mode_commands(std::string_view text) {
+  int n = 0;
+  gcode::MemoryLineSplitter split(text);
+  gcode::RawLine raw;
+  while (split.next(raw)) {
+    gcode::Line line = gcode::Line::parse(raw.text);
+    n += line.is_m(82) || line.is_m(83) ? 1 : 0;
+  }
+  return n;
 }
 
 gcode::MachineState replay_state(std::string_view text) {

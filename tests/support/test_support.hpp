@@ -2,6 +2,8 @@
 // Helpers shared by the tests: fixture paths, reading files, running a built
 // tool, and replaying G-code through the library into plain records that
 // tests compare (the "independent checker" of the tool tests).
+#include <nlohmann/json.hpp>
+
 #include <string>
 #include <string_view>
 #include <vector>
@@ -17,6 +19,10 @@ std::string read_file(const std::string& path);
 void write_file(const std::string& path, std::string_view data);
 // All fixture file names (*.gcode) in tests/fixtures.
 std::vector<std::string> fixture_names();
+// The layers the slicer itself says a fixture has (layer_count, z, ...), from
+// tests/fixtures/expected/<name without .gcode>.json, or null where a fixture
+// has none. tests/fixtures/sources/README.md says how each was derived.
+nlohmann::json expected_data(std::string_view fixture);
 // A fresh empty directory under the build's temp area.
 std::string temp_dir();
 
@@ -41,6 +47,8 @@ struct ReplayedMove {
   std::size_t line_index;  // 0-based line in the text
 };
 std::vector<ReplayedMove> replay_moves(std::string_view text);
+// How many M82/M83 (E mode) commands a text holds.
+int e_mode_commands(std::string_view text);
 gcode::MachineState replay_state(std::string_view text);
 
 // Runs `text` through `stages` and a GcodeWriter; returns what was written.

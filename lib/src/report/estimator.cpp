@@ -107,10 +107,18 @@ void Estimator::add_move(const Move& move) {
     if (length <= kTiny) return;
     delta[0] = delta[1] = delta[2] = 0;
   } else if (move.kind == MoveKind::Arc) {
-    // The chord gives the direction; the path is the arc's length.
-    double chord = std::sqrt(delta[0] * delta[0] + delta[1] * delta[1] + delta[2] * delta[2]);
-    double scale = chord > kTiny ? length / chord : 1;
-    for (int a = 0; a < 3; ++a) delta[static_cast<std::size_t>(a)] *= scale;
+    // The path is the arc's XY length with its own Z: the XY chord gives the
+    // direction in the plane. A circle back to its start (BambuStudio's
+    // spiral lift "G3 Z.6 I1.217 J0 P1") has no XY chord: its XY travel goes
+    // on X, so a helix is never timed as a Z move at the Z feed rate.
+    double chord_xy = std::sqrt(delta[0] * delta[0] + delta[1] * delta[1]);
+    if (chord_xy > kTiny) {
+      delta[0] *= move.xy_length / chord_xy;
+      delta[1] *= move.xy_length / chord_xy;
+    } else {
+      delta[0] = move.xy_length;
+      delta[1] = 0;
+    }
   }
   Kind kind = e_only ? Kind::Retract : (move.filament > 0 ? Kind::Print : Kind::Travel);
 

@@ -99,20 +99,20 @@ bool PlannerLimits::apply(const Line& line) {
       if (const Word* w = line.find('T'); w != nullptr && w->has_value && w->value() >= 0) min_travel_feedrate = w->value();
       return true;
     }
-    case 207:  // firmware retraction: S length, F speed (mm/min)
+    case 207:  // firmware retraction: S length, F speed (mm/min); RepRapFirmware also R extra, T recover speed
       positive('S', fw_retract_length);
       positive('F', fw_retract_speed, 1.0 / 60);
+      if (const Word* w = line.find('R'); w != nullptr && w->has_value) fw_unretract_extra = w->value;
+      positive('T', fw_unretract_speed, 1.0 / 60);
+      fw_retract_set_ = true;
       return true;
-    case 208:  // firmware recover: S extra length, F speed (mm/min)
+    case 208:  // firmware recover (Marlin): S extra length, F speed (mm/min)
       if (const Word* w = line.find('S'); w != nullptr && w->has_value) fw_unretract_extra = w->value();
       positive('F', fw_unretract_speed, 1.0 / 60);
+      fw_retract_set_ = true;
       return true;
     case 566:  // RepRapFirmware's jerk: allowed instantaneous speed change, mm/min
-      if (firmware != Firmware::RepRapFirmware) {
-        firmware = Firmware::RepRapFirmware;
-        if (m203_in_mm_per_s_)
-          for (double& f : max_feedrate) f /= 60;
-      }
+      become_reprapfirmware();
       for (int a = 0; a < 4; ++a) positive(kAxisLetters[a], jerk[static_cast<std::size_t>(a)], 1.0 / 60);
       junction_deviation = 0;
       return true;
@@ -156,14 +156,21 @@ bool PlannerLimits::set(std::string_view key, std::string_view value) {
     return min_feedrate = first_number(key, value), true;
   if (key == "min_travel_feedrate" || key == "machine_min_travel_rate")
     return min_travel_feedrate = first_number(key, value), true;
-  if (key == "fw_retract_length") return fw_retract_length = first_number(key, value), true;
-  if (key == "fw_retract_speed") return fw_retract_speed = first_number(key, value), true;
-  if (key == "fw_unretract_extra") return fw_unretract_extra = first_number(key, value, true), true;
-  if (key == "fw_unretract_speed") return fw_unretract_speed = first_number(key, value), true;
+  if (key.substr(0, 3) == "fw_") {
+    double* field = key == "fw_retract_length"    ? &fw_retract_length
+                    : key == "fw_retract_speed"   ? &fw_retract_speed
+                    : key == "fw_unretract_extra" ? &fw_unretract_extra
+                    : key == "fw_unretract_speed" ? &fw_unretract_speed
+                                                  : nullptr;
+    if (field == nullptr) return false;
+    *field = first_number(key, value, field == &fw_unretract_extra);
+    fw_retract_set_ = true;
+    return true;
+  }
   if (key == "firmware" || key == "gcode_flavor") {
     std::string_view v = trim(value);
     if (v == "reprapfirmware" || v == "rrf") {
-      firmware = Firmware::RepRapFirmware;
+      become_reprapfirmware();
     } else if (key == "firmware" && v != "marlin") {
       throw std::invalid_argument(fmt::format("profile: firmware = {}: expected marlin or reprapfirmware", v));
     } else {
@@ -172,6 +179,21 @@ bool PlannerLimits::set(std::string_view key, std::string_view value) {
     return true;
   }
   return false;
+}
+
+void PlannerLimits::become_reprapfirmware() {
+  if (firmware == Firmware::RepRapFirmware) return;
+  firmware = Firmware::RepRapFirmware;
+  if (m203_in_mm_per_s_)
+    for (double& f : max_feedrate) f /= 60;
+  // Its own firmware-retraction defaults (Configuration.h: DefaultRetractLength
+  // 2 mm, DefaultRetractSpeed 1000 mm/min for retract and recover), unless
+  // M207/M208 or the profile already said what the printer does.
+  if (!fw_retract_set_) {
+    fw_retract_length = 2;
+    fw_retract_speed = fw_unretract_speed = 1000.0 / 60;
+    fw_unretract_extra = 0;
+  }
 }
 
 int PlannerLimits::load_profile_text(std::string_view text) {

@@ -1,12 +1,23 @@
 #pragma once
-// Recognises the comments slicers write at layer changes.
+// Recognises the comments slicers write at layer changes
+// (tests/fixtures/sources/layer-markers.md has the sources and where each
+// sits relative to the layer's Z move). Numbers are the slicer's own:
 //
-//   CuraEngine, Slic3r custom  ;LAYER:12            (number, 0-based, negative for raft)
-//   PrusaSlicer/Slic3r/Orca    ;LAYER_CHANGE  then  ;Z:0.4  ;HEIGHT:0.2
-//   Orca/Bambu                 ; CHANGE_LAYER then  ; Z_HEIGHT: 0.4  ; LAYER_HEIGHT: 0.2
-//   Simplify3D                 ; layer 3, Z = 0.600
-// and the ;TYPE: feature comments. A user pattern (RE2) replaces the built-in
-// markers when given; it is compiled once and tried on comment lines only.
+//   CuraEngine, ideaMaker,     ;LAYER:12            (0-based, negative for raft layers)
+//   Slic3r custom, MatterSlice
+//   PrusaSlicer/SuperSlicer/   ;LAYER_CHANGE  then  ;Z:0.4  ;HEIGHT:0.2
+//   Orca (non-Bambu printers)
+//   BambuStudio/Orca           ; CHANGE_LAYER then  ; Z_HEIGHT: 0.4  ; LAYER_HEIGHT: 0.2
+//   Simplify3D                 ; layer 3, Z = 0.600                      (1-based)
+//   KISSlicer                  ; BEGIN_LAYER_OBJECT z=0.263 z_thickness=0.263
+//   Kiri:Moto                  ;; --- layer 12 (0.200 @ 2.6) ---         (0-based)
+//   Skeinforge                 (<layer> 0.4 )
+//   Miracle-Grue (MakerWare)   (Slice 0, 1 Extruder)                     (0-based)
+// and the ;TYPE: feature comments. Slic3r's verbose layer move
+//   G1 Z0.600 F9000.000 ; move to next layer (2)                         (0-based)
+// sits on a move, not on a comment-only line: classify_move() reads it.
+// A user pattern (RE2) replaces the built-in markers when given; it is
+// compiled once and tried on comment lines only.
 #include <memory>
 #include <string>
 #include <string_view>
@@ -17,15 +28,27 @@ class RE2;
 
 namespace gcode {
 
-enum class MarkerKind : unsigned char { None, CuraLayer, LayerChange, ChangeLayer, Simplify3D, User };
+enum class MarkerKind : unsigned char {
+  None,
+  CuraLayer,
+  LayerChange,
+  ChangeLayer,
+  Simplify3D,
+  User,
+  KISSlicer,
+  KiriMoto,
+  Skeinforge,
+  MiracleGrue,
+  LayerMove,  // Slic3r verbose "move to next layer (n)" on the layer's Z move
+};
 
 struct CommentInfo {
   MarkerKind marker = MarkerKind::None;
   bool has_number = false;
-  long number = 0;           // the slicer's layer number
-  bool has_z = false;        // ;Z:, ; Z_HEIGHT:, or in the S3D marker
+  long number = 0;           // the slicer's layer number, in the slicer's own base
+  bool has_z = false;        // ;Z:, ; Z_HEIGHT:, or in the marker itself
   double z = 0;
-  bool has_height = false;   // ;HEIGHT:, ; LAYER_HEIGHT:
+  bool has_height = false;   // ;HEIGHT:, ; LAYER_HEIGHT:, or in the marker itself
   double height = 0;
   bool is_type = false;      // ;TYPE:name
   std::string_view type;     // the feature name, views the comment
@@ -42,8 +65,18 @@ class LayerMarkers {
   LayerMarkers(LayerMarkers&&) noexcept;
   LayerMarkers& operator=(LayerMarkers&&) noexcept;
 
-  // Classifies a comment (text after the ';' or inside the parentheses).
+  // Classifies the comment of a comment-only line (text after the ';' or
+  // inside the parentheses, blanks trimmed, as Line::comment_text gives it).
   CommentInfo classify(std::string_view comment_text) const;
+
+  // Classifies the comment of a move line: Slic3r's (and PrusaSlicer's before
+  // 2.8, SuperSlicer's) verbose layer move "move to next layer (n)" gives
+  // MarkerKind::LayerMove with n, the slicer's 0-based layer number (Slic3r
+  // before 1.0 wrote no number: has_number is false). The layer's Z is the
+  // move's Z, except in spiral vase mode, where Slic3r writes the move at the
+  // previous layer's Z and the layer climbs from there. None for anything
+  // else, and always None when a user pattern replaces the built-in markers.
+  CommentInfo classify_move(std::string_view comment_text) const;
 
  private:
   std::unique_ptr<re2::RE2> user_;

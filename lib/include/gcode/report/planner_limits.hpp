@@ -40,7 +40,11 @@ struct PlannerLimits {
   double junction_deviation = 0;              // mm, M205 J; > 0 selects that model
   double min_feedrate = 0;                    // mm/s, M205 S (printing moves)
   double min_travel_feedrate = 0;             // mm/s, M205 T (travel)
-  // Firmware retraction (G10/G11), Marlin's FWRETRACT defaults; M207/M208.
+  // Firmware retraction (G10/G11): what the firmware does when the file does
+  // not say (Marlin's FWRETRACT defaults; RepRapFirmware's 2 mm at 1000 mm/min
+  // both ways once the firmware is known to be RRF), else M207 (S F, and RRF's
+  // R T), M208 (Marlin: S F) or the profile's fw_* keys. Slicers do not time
+  // these at all (PrusaSlicer) or at a fixed guess (CuraEngine): see the man page.
   double fw_retract_length = 3;       // mm
   double fw_retract_speed = 45;       // mm/s
   double fw_unretract_extra = 0;      // mm
@@ -49,7 +53,8 @@ struct PlannerLimits {
 
   // Applies a limit command (M201 M203 M204 M205 M207 M208 M566); returns
   // whether the line was one. A first M566 means RepRapFirmware, whose M203
-  // is in mm/min: an M203 read before it as mm/s is converted then.
+  // is in mm/min: an M203 read before it as mm/s is converted then, and
+  // firmware retraction not yet set takes RRF's defaults.
   bool apply(const Line& line);
 
   // Applies one profile entry; returns false for an unknown key (ignored by
@@ -76,7 +81,10 @@ struct PlannerLimits {
   std::vector<std::string> describe() const;
 
  private:
+  void become_reprapfirmware();
+
   bool m203_in_mm_per_s_ = false;  // an M203 was read before the firmware was known
+  bool fw_retract_set_ = false;    // M207/M208 or a fw_* profile key said how the printer retracts
 };
 
 }  // namespace gcode
