@@ -15,6 +15,8 @@ std::string fixture_path(std::string_view name);
 std::string tool_path(std::string_view tool);
 std::string read_file(const std::string& path);
 void write_file(const std::string& path, std::string_view data);
+// The first `lines` lines of a fixture (a cut of its first layers).
+std::string head_of(const std::string& name, std::size_t lines);
 // All fixture file names (*.gcode) in tests/fixtures.
 std::vector<std::string> fixture_names();
 // A fresh empty directory under the build's temp area.
@@ -42,6 +44,15 @@ struct ReplayedMove {
 };
 std::vector<ReplayedMove> replay_moves(std::string_view text);
 gcode::MachineState replay_state(std::string_view text);
+
+// Per input line, its layer (0 outside layers), its ;TYPE: feature and the
+// Z of its layer, as the tracker (gc-layers' numbering) sees them.
+struct LinePlace {
+  std::vector<int> layer;
+  std::vector<std::string> feature;
+  std::vector<double> layer_z;
+};
+LinePlace places_of(const std::string& text);
 
 // Runs `text` through `stages` and a GcodeWriter; returns what was written.
 // `layers`: track layers (else every line is start code).
