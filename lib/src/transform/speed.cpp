@@ -89,14 +89,6 @@ void SpeedOptions::validate() const {
   }
 }
 
-struct SpeedStage::Target {
-  Fixed word;         // the F to write, in the file's units
-  double feed = 0;    // mm/min, as the machine state will read it
-  bool changed = false;
-  bool travel = false;
-  std::uint64_t SpeedStats::*cap = nullptr;  // the cap that bound the move, if any
-};
-
 SpeedStage::SpeedStage(const SpeedOptions& options, const Precision& precision, Diagnostics* diagnostics,
                        LayerSelection* selection)
     : options_(options), precision_(precision), diagnostics_(diagnostics), selection_(selection) {
@@ -112,6 +104,7 @@ SpeedStage::SpeedStage(const SpeedOptions& options, const Precision& precision, 
 
 void SpeedStage::set_factor(Fixed factor) {
   factor_ = factor;
+  for (Cache& c : cache_) c.valid = false;
   if (options_.mark.empty()) return;
   note_.assign(options_.mark);
   if (options_.speed > 0) {
@@ -211,6 +204,12 @@ SpeedStage::Target SpeedStage::target_for(const TrackedLine& t) {
   const bool inches = t.state.inches;
   const double unit = inches ? kInch : 1.0;
   const int decimals = std::min(precision_.of('F') + (inches ? 2 : 0), Fixed::kDecimals);
+  // Without a flow cap the target depends on the F alone, and runs of moves
+  // share one F: the last answer is reused.
+  Cache& cache = cache_[m.extruding ? 0 : 1];
+  if (cache.valid && cache.feed == m.feedrate && cache.inches == inches && cache.decimals == decimals &&
+      options_.max_flow <= 0)
+    return cache.target;
   Target target;
   target.travel = !m.extruding;
   // The original F as the file wrote it (mm/min, or in/min under G20).
@@ -257,6 +256,7 @@ SpeedStage::Target SpeedStage::target_for(const TrackedLine& t) {
   target.word = round_to(value, decimals, rounding);
   target.changed = target.word != original;
   target.feed = target.word.to_double() * unit;
+  cache = Cache{true, inches, decimals, m.feedrate, target};
   return target;
 }
 

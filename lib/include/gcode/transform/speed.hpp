@@ -117,7 +117,20 @@ class SpeedStage : public Stage {
   const SpeedStats& stats() const { return stats_; }
 
  private:
-  struct Target;
+  struct Target {
+    Fixed word;         // the F to write, in the file's units
+    double feed = 0;    // mm/min, as the machine state will read it
+    bool changed = false;
+    bool travel = false;
+    std::uint64_t SpeedStats::*cap = nullptr;  // the cap that bound the move, if any
+  };
+  struct Cache {
+    bool valid = false;
+    bool inches = false;
+    int decimals = 0;
+    double feed = 0;
+    Target target;
+  };
   bool in_region(const TrackedLine& t);
   bool eligible(const Move& move) const;
   Target target_for(const TrackedLine& t);
@@ -145,7 +158,7 @@ class SpeedStage : public Stage {
   std::string note_restore_;  // "gc-speedup restore"
   std::string note_travel_;   // "gc-speedup x2" (--travel-factor)
   std::string note_travel_capped_;
-  std::string text_;          // the edited line
+  Cache cache_[2];            // the last target for extrusion [0] and travel [1]
   SpeedStats stats_;
 };
 
