@@ -397,26 +397,11 @@ TEST_CASE("speedup region the file does not have changes nothing and warns", "[g
   CHECK(speedup("--factor 1", text).out == text);
 }
 
-// Every "--name" in a text (roff writes a dash as "\-").
-static std::set<std::string> long_options(std::string text) {
-  for (std::size_t p; (p = text.find("\\-")) != std::string::npos;) text.erase(p, 1);
-  std::set<std::string> names;
-  for (std::size_t p = 0; (p = text.find("--", p)) != std::string::npos;) {
-    std::size_t e = p + 2;
-    while (e < text.size() && ((text[e] >= 'a' && text[e] <= 'z') || text[e] == '0' || (text[e] >= '1' && text[e] <= '9') ||
-                               (text[e] == '-' && e > p + 2)))
-      ++e;
-    if (e > p + 3) names.insert(text.substr(p, e - p));
-    p = e;
-  }
-  return names;
-}
-
 TEST_CASE("speedup help and the man page name the same options", "[gc-speedup][docs]") {
   auto help = speedup("--help");
   REQUIRE(help.status == 0);
   std::string man = read_file(std::string(GC_FIXTURES_DIR) + "/../../man/gc-speedup.1");
-  std::set<std::string> in_help = long_options(help.out), in_man = long_options(man);
+  std::set<std::string> in_help = gctest::long_options(help.out), in_man = gctest::long_options(man);
   CHECK(in_help == in_man);
   CHECK(in_help.count("--m220-restore") == 1);
   CHECK(in_help.count("--max-flow") == 1);

@@ -2,6 +2,7 @@
 // Helpers shared by the tests: fixture paths, reading files, running a built
 // tool, and replaying G-code through the library into plain records that
 // tests compare (the "independent checker" of the tool tests).
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -32,6 +33,10 @@ RunResult run(const std::string& command_line, std::string_view input = {});
 std::string quote(std::string_view arg);
 // The shell command line that runs a built tool with `args` (already quoted).
 std::string tool_command(std::string_view tool, const std::string& args);
+
+// Every "--name" in a text: --help output or a man page (roff writes a dash
+// as "\-"), for tests that the two name the same options.
+std::set<std::string> long_options(std::string text);
 
 // Splits text into lines the way the library does (endings kept).
 std::vector<std::string> split_lines(std::string_view text);
