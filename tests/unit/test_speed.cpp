@@ -303,6 +303,7 @@ TEST_CASE("speed refuses lines an earlier run marked unless forced and ignores i
   force.force = true;
   CHECK(speed(marked, force).out == "M83\nG1 X0 F600\nG1 X1 E1 F2400 ; gc-speedup x2 ; gc-speedup x2\nG1 X2 E1\n");
   CHECK_NOTHROW(speed("M83\nG1 X0 F600 ; gc-speedup restore\nG1 X1 E1\n", factor_of(2)));
+  CHECK_THROWS(speed("M83\nG1 X0 F600\nG1 X1 E1 F900 ; gc-speedup restore ; gc-speedup x1.5\n", factor_of(2)));
   // Outside the region a mark is no concern; without a mark nothing is written or checked.
   CHECK_NOTHROW(speed(";LAYER:0\nM83\nG1 Z0.2 F600 ; gc-speedup x2\nG1 X1 E1\n;LAYER:1\nG1 Z0.4\nG1 X2 E1\n", factor_of(2), "2"));
   SpeedOptions unmarked = factor_of(2);

@@ -170,8 +170,11 @@ bool SpeedStage::eligible(const Move& m) const {
 
 void SpeedStage::check_mark(const TrackedLine& t) {
   std::string_view comment = t.line.comment;
+  // Any mark but a restore ("; gc-speedup restore ; gc-speedup x2" after a forced run too).
   std::size_t at = comment.find(options_.mark);
-  if (at == std::string_view::npos || comment.find(note_restore_) == at || !in_region(t)) return;
+  while (at != std::string_view::npos && comment.compare(at, note_restore_.size(), note_restore_) == 0)
+    at = comment.find(options_.mark, at + note_restore_.size());
+  if (at == std::string_view::npos || !in_region(t)) return;
   throw std::runtime_error("line " + std::to_string(t.raw.number) + ": already changed by " + options_.mark + " ('" +
                            std::string(comment) + "'); changing it again would multiply the factors (give --force to do it)");
 }
