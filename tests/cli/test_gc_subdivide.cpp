@@ -14,12 +14,12 @@
 #include "test_support.hpp"
 
 using gctest::fixture_path;
+using gctest::head_of;
 using gctest::quote;
 using gctest::read_file;
 using gctest::run;
 
 namespace {
-
 
 // Runs the tool on `input` (stdin), checks the invariants and that a second
 // run changes nothing. Returns the checker's report.
@@ -41,43 +41,6 @@ gctest::SubdivideLimits max_limits(double mm) {
   l.max = mm;
   l.min = std::min(0.05, mm / 2);
   return l;
-}
-
-// The first `lines` lines of a fixture (a cut of its first layers).
-std::string head_of(const std::string& name, std::size_t lines) {
-  std::string text = read_file(fixture_path(name));
-  std::size_t pos = 0;
-  for (std::size_t i = 0; i < lines && pos != std::string::npos; ++i) pos = text.find('\n', pos + 1);
-  return pos == std::string::npos ? text : text.substr(0, pos + 1);
-}
-
-// Per input line, its layer (0 outside layers) and ;TYPE: feature, as the
-// tracker (gc-layers' numbering) sees them.
-struct LinePlace {
-  std::vector<int> layer;
-  std::vector<std::string> feature;
-  std::vector<double> layer_z;
-};
-LinePlace places_of(const std::string& text) {
-  struct Sink : gcode::LayerSink {
-    LinePlace p;
-    gcode::LayerTracker* tracker = nullptr;
-    double z = 0;
-    void on_layer(const gcode::LayerInfo& l, const gcode::MachineState&) override { z = l.z; }
-    void on_line(const gcode::TrackedLine& t) override {
-      p.layer.push_back(t.region == gcode::Region::Layer ? t.layer : 0);
-      p.feature.push_back(t.feature >= 0 ? tracker->feature_name(t.feature) : std::string());
-      p.layer_z.push_back(z);
-    }
-  } sink;
-  gcode::LayerMarkers markers;
-  gcode::LayerTracker tracker(sink, markers);
-  sink.tracker = &tracker;
-  gcode::MemoryLineSplitter split(text);
-  gcode::RawLine raw;
-  while (split.next(raw)) tracker.push(raw);
-  tracker.finish();
-  return sink.p;
 }
 
 }  // namespace
@@ -122,7 +85,7 @@ TEST_CASE("a file with CRLF endings keeps them on every piece", "[gc-subdivide]"
 TEST_CASE("selections by layer and height and feature split only there", "[gc-subdivide][select]") {
   std::string name = "prusa_cube_0.2_mk3s_rel_zhop.gcode";
   std::string text = read_file(fixture_path(name));
-  LinePlace place = places_of(text);
+  gctest::LinePlace place = gctest::places_of(text);
   REQUIRE(place.layer.size() == gctest::split_lines(text).size());
 
   SECTION("layers 3-5") {
@@ -247,24 +210,11 @@ TEST_CASE("a file without an E mode keeps its filament when read as the slicer w
   CHECK(out == Approx(in).margin(1e-6));
 }
 
-// Every "--name" in a text (roff writes a dash as "\-").
-static std::set<std::string> long_options(std::string text) {
-  for (std::size_t p; (p = text.find("\\-")) != std::string::npos;) text.erase(p, 1);
-  std::set<std::string> names;
-  for (std::size_t p = 0; (p = text.find("--", p)) != std::string::npos;) {
-    std::size_t e = p + 2;
-    while (e < text.size() && ((text[e] >= 'a' && text[e] <= 'z') || (text[e] == '-' && e > p + 2))) ++e;
-    if (e > p + 3) names.insert(text.substr(p, e - p));
-    p = e;
-  }
-  return names;
-}
-
 TEST_CASE("help and the man page name the same options", "[gc-subdivide][docs]") {
   auto help = run(gctest::tool_command("gc-subdivide", "--help"));
   REQUIRE(help.status == 0);
   std::string man = read_file(std::string(GC_FIXTURES_DIR) + "/../../man/gc-subdivide.1");
-  std::set<std::string> in_help = long_options(help.out), in_man = long_options(man);
+  std::set<std::string> in_help = gctest::long_options(help.out), in_man = gctest::long_options(man);
   CHECK(in_help == in_man);
   CHECK(in_help.count("--latency") == 1);
   CHECK(in_help.count("--no-travel") == 1);

@@ -38,6 +38,13 @@ void write_file(const std::string& path, std::string_view data) {
   if (!out) throw std::runtime_error("cannot write " + path);
 }
 
+std::string head_of(const std::string& name, std::size_t lines) {
+  std::string text = read_file(fixture_path(name));
+  std::size_t pos = 0;
+  for (std::size_t i = 0; i < lines && pos != std::string::npos; ++i) pos = text.find('\n', pos + 1);
+  return pos == std::string::npos ? text : text.substr(0, pos + 1);
+}
+
 std::vector<std::string> fixture_names() {
   std::vector<std::string> names;
   for (const auto& e : fs::directory_iterator(GC_FIXTURES_DIR))
@@ -96,6 +103,20 @@ RunResult run(const std::string& command_line, std::string_view input) {
   return r;
 }
 
+std::set<std::string> long_options(std::string text) {
+  for (std::size_t p; (p = text.find("\\-")) != std::string::npos;) text.erase(p, 1);
+  std::set<std::string> names;
+  for (std::size_t p = 0; (p = text.find("--", p)) != std::string::npos;) {
+    std::size_t e = p + 2;
+    while (e < text.size() && ((text[e] >= 'a' && text[e] <= 'z') || (text[e] >= '0' && text[e] <= '9') ||
+                               (text[e] == '-' && e > p + 2)))
+      ++e;
+    if (e > p + 3) names.insert(text.substr(p, e - p));
+    p = e;
+  }
+  return names;
+}
+
 std::vector<std::string> split_lines(std::string_view text) {
   std::vector<std::string> lines;
   gcode::MemoryLineSplitter split(text);
@@ -136,6 +157,28 @@ gcode::MachineState replay_state(std::string_view text) {
   gcode::RawLine raw;
   while (split.next(raw)) state.apply(gcode::Line::parse(raw.text));
   return state;
+}
+
+LinePlace places_of(const std::string& text) {
+  struct Sink : gcode::LayerSink {
+    LinePlace p;
+    gcode::LayerTracker* tracker = nullptr;
+    double z = 0;
+    void on_layer(const gcode::LayerInfo& l, const gcode::MachineState&) override { z = l.z; }
+    void on_line(const gcode::TrackedLine& t) override {
+      p.layer.push_back(t.region == gcode::Region::Layer ? t.layer : 0);
+      p.feature.push_back(t.feature >= 0 ? tracker->feature_name(t.feature) : std::string());
+      p.layer_z.push_back(z);
+    }
+  } sink;
+  gcode::LayerMarkers markers;
+  gcode::LayerTracker tracker(sink, markers);
+  sink.tracker = &tracker;
+  gcode::MemoryLineSplitter split(text);
+  gcode::RawLine raw;
+  while (split.next(raw)) tracker.push(raw);
+  tracker.finish();
+  return sink.p;
 }
 
 std::string run_stages(gcode::Pipeline& pipeline, std::string_view text) {

@@ -2,6 +2,8 @@
 // Helpers shared by the tests: fixture paths, reading files, running a built
 // tool, and replaying G-code through the library into plain records that
 // tests compare (the "independent checker" of the tool tests).
+#include <set>
+
 #include <nlohmann/json.hpp>
 
 #include <string>
@@ -17,6 +19,8 @@ std::string fixture_path(std::string_view name);
 std::string tool_path(std::string_view tool);
 std::string read_file(const std::string& path);
 void write_file(const std::string& path, std::string_view data);
+// The first `lines` lines of a fixture (a cut of its first layers).
+std::string head_of(const std::string& name, std::size_t lines);
 // All fixture file names (*.gcode) in tests/fixtures.
 std::vector<std::string> fixture_names();
 // The layers the slicer itself says a fixture has (layer_count, z, ...), from
@@ -37,6 +41,10 @@ std::string quote(std::string_view arg);
 // The shell command line that runs a built tool with `args` (already quoted).
 std::string tool_command(std::string_view tool, const std::string& args);
 
+// Every "--name" in a text: --help output or a man page (roff writes a dash
+// as "\-"), for tests that the two name the same options.
+std::set<std::string> long_options(std::string text);
+
 // Splits text into lines the way the library does (endings kept).
 std::vector<std::string> split_lines(std::string_view text);
 
@@ -50,6 +58,15 @@ std::vector<ReplayedMove> replay_moves(std::string_view text);
 // How many M82/M83 (E mode) commands a text holds.
 int e_mode_commands(std::string_view text);
 gcode::MachineState replay_state(std::string_view text);
+
+// Per input line, its layer (0 outside layers), its ;TYPE: feature and the
+// Z of its layer, as the tracker (gc-layers' numbering) sees them.
+struct LinePlace {
+  std::vector<int> layer;
+  std::vector<std::string> feature;
+  std::vector<double> layer_z;
+};
+LinePlace places_of(const std::string& text);
 
 // Runs `text` through `stages` and a GcodeWriter; returns what was written.
 // `layers`: track layers (else every line is start code).

@@ -91,6 +91,13 @@ TEST_CASE("per-axis limits cap speed and acceleration", "[estimator]") {
   CHECK(run(with_setup({"M220 S50", "G1 X100"})) == Approx(trapezoid(100, 0, 50, 0)).epsilon(1e-9));
 }
 
+TEST_CASE("M220 B backs up the feed rate percentage and M220 R restores it", "[estimator]") {
+  // Marlin 2 and Prusa firmware: B before S in one line saves the old value.
+  double half = trapezoid(100, 0, 50, 0), full = trapezoid(100, 0, 100, 0);
+  CHECK(run(with_setup({"M220 B S50", "G1 X100", "M400", "M220 R", "G1 X0"})) == Approx(half + full).epsilon(1e-9));
+  CHECK(run(with_setup({"M220 S50", "M220 B", "M220 S100", "M220 R", "G1 X100"})) == Approx(half).epsilon(1e-9));
+}
+
 TEST_CASE("E-only moves use the retract acceleration and the E feed limit", "[estimator]") {
   // 5 mm at F2700 = 45 mm/s, capped by Marlin's default E max of 25 mm/s; R2000.
   double expected = trapezoid(5, 0, 25, 0, 2000);

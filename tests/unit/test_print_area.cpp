@@ -112,3 +112,34 @@ TEST_CASE("limits: a pipe is not a file to read ahead", "[limits]") {
   ::close(fds[0]);
   ::close(fds[1]);
 }
+
+TEST_CASE("limits: filament diameter and firmware flavour from every slicer's comments", "[limits]") {
+  // PrusaSlicer writes both in its config block at the end of the file.
+  PrintArea prusa = from_fixture("prusa_cube_0.2_mk3s_rel_zhop.gcode");
+  REQUIRE(prusa.has_filament_diameter);
+  CHECK(prusa.filament_diameter == 1.75);
+  CHECK(prusa.flavor == "marlin2");
+  CHECK(from_fixture("prusa_pegs_0.2_klipper_zhop_labels.gcode").filament_diameter == 1.75);
+  // CuraEngine: the flavour in the header, no diameter unless the front end wrote its settings.
+  PrintArea cura = from_fixture("cura_cube_0.2_abs_zhop_skirt.gcode");
+  CHECK_FALSE(cura.has_filament_diameter);
+  CHECK(cura.flavor == "Marlin");
+  CHECK(scan_text_limits(";SETTING_3 {\"extruder_quality\": [\"[values]\\\\nmaterial_diameter = 2.85\\\\n\"]}\n")
+            .filament_diameter == 2.85);
+  // A list (one per extruder) gives the first; Simplify3D, Cura 15 and IdeaMaker spellings.
+  CHECK(scan_text_limits("; filament_diameter = 2.85,1.75\n").filament_diameter == 2.85);
+  CHECK(scan_text_limits(";   filamentDiameters,1.75|2.85\n").filament_diameter == 1.75);
+  CHECK(scan_text_limits(";Filament Diameter: 2.85\n").filament_diameter == 2.85);
+  CHECK(scan_text_limits(";Filament diameter: 1.75mm\n").filament_diameter == 1.75);
+  CHECK(scan_text_limits(";Filament Diameter #0: 1.75\n").filament_diameter == 1.75);
+  // The first value counts; a number that is no filament is not a diameter.
+  CHECK(scan_text_limits("; filament_diameter = 1.75\n; filament_diameter = 2.85\n").filament_diameter == 1.75);
+  CHECK_FALSE(scan_text_limits("; filament_diameter = 0\n").has_filament_diameter);
+  CHECK_FALSE(scan_text_limits("; filament_diameter = 175\n").has_filament_diameter);
+  CHECK_FALSE(scan_text_limits("; filament_diameter_x = 1.75\n;Filament Diameters: 1.75\n").has_filament_diameter);
+  CHECK(scan_text_limits("; gcode_flavor = klipper\n").flavor == "klipper");
+  PrintArea merged = scan_text_limits("G28\n");
+  merged.merge(prusa);
+  CHECK(merged.filament_diameter == 1.75);
+  CHECK(merged.flavor == "marlin2");
+}

@@ -18,6 +18,35 @@ int Filter::count_layers() {
   return layers;
 }
 
+namespace {
+
+// Keeps every layer event of a reading.
+class LayerLister : public Stage {
+ public:
+  void layer(const LayerInfo& info, const MachineState& before, Emitter& out) override {
+    layers.push_back(info);
+    out.layer(info, before);
+  }
+  bool reads_state() const override { return false; }
+  bool reads_lines() const override { return false; }
+  std::vector<LayerInfo> layers;
+};
+
+}  // namespace
+
+InputScan Filter::scan() {
+  input_.make_seekable();
+  LayerLister lister;
+  Pipeline reading(markers_);
+  reading.add(lister);
+  reading.run(input_.fd());
+  input_.rewind();
+  InputScan found;
+  found.layers = std::move(lister.layers);
+  for (int f = 0; f < reading.tracker().feature_count(); ++f) found.features.push_back(reading.tracker().feature_name(f));
+  return found;
+}
+
 LayerSelection Filter::selection(const SelectionText& text) {
   LayerSelection s;
   try {

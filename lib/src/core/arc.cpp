@@ -52,8 +52,8 @@ Arc make_arc(const Line& line, double x0, double y0, double x1, double y1, doubl
   int turns = 0;
   if (const Word* p = line.find('P'); p != nullptr && p->has_value) {
     // Marlin reads P as a whole number; a fraction or a sign means the line is not what it seems.
-    if (!(p->value >= 0 && p->value <= kMaxArcTurns) || p->value != std::floor(p->value)) return Arc{};
-    turns = static_cast<int>(p->value);
+    if (!(p->value() >= 0 && p->value() <= kMaxArcTurns) || p->value() != std::floor(p->value())) return Arc{};
+    turns = static_cast<int>(p->value());
   }
   bool has_ij = line.has('I') || line.has('J');
   return make_arc(x0, y0, x1, y1, line.number == 2, has_ij, line.value_or('I', 0) * scale,

@@ -78,6 +78,42 @@ bool cura_setting(std::string_view all, std::string_view key, double& v) {
   return end > 0 && number_of(rest.substr(0, end), v);
 }
 
+// Filament is 1.75 or 2.85 mm (3 mm nominal); anything outside this is not a diameter.
+bool sane_diameter(double d) { return d > 0.5 && d < 5; }
+
+// The first number of a list ("1.75,1.75", "1.75|2.85"), a unit after it allowed ("1.75mm").
+bool first_number(std::string_view text, double& v) {
+  text = trim(text);
+  std::size_t end = text.find_first_of(",|; \t");
+  std::string_view item = text.substr(0, end);
+  if (item.size() > 2 && (item.substr(item.size() - 2) == "mm" || item.substr(item.size() - 2) == "MM"))
+    item.remove_suffix(2);
+  return number_of(item, v);
+}
+
+bool starts_with_nocase(std::string_view text, std::string_view prefix) {
+  if (text.size() < prefix.size()) return false;
+  for (std::size_t i = 0; i < prefix.size(); ++i)
+    if (std::tolower(static_cast<unsigned char>(text[i])) != std::tolower(static_cast<unsigned char>(prefix[i])))
+      return false;
+  return true;
+}
+
+// ";Filament Diameter: 2.85", ";Filament diameter: 1.75mm", ";Filament Diameter #0: 1.75".
+bool filament_diameter_comment(std::string_view c, double& v) {
+  c = trim(c);
+  constexpr std::string_view kKey = "filament diameter";
+  if (!starts_with_nocase(c, kKey)) return false;
+  std::string_view rest = trim(c.substr(kKey.size()));
+  if (!rest.empty() && rest.front() == '#') {
+    rest.remove_prefix(1);
+    while (!rest.empty() && std::isdigit(static_cast<unsigned char>(rest.front()))) rest.remove_prefix(1);
+    rest = trim(rest);
+  }
+  if (rest.empty() || (rest.front() != ':' && rest.front() != '=')) return false;
+  return first_number(rest.substr(1), v);
+}
+
 }  // namespace
 
 void PrintArea::merge(const PrintArea& o) {
@@ -97,6 +133,11 @@ void PrintArea::merge(const PrintArea& o) {
     has_print_top = true;
     print_top = o.print_top;
   }
+  if (!has_filament_diameter && o.has_filament_diameter) {
+    has_filament_diameter = true;
+    filament_diameter = o.filament_diameter;
+  }
+  if (flavor.empty()) flavor = o.flavor;
 }
 
 void PrintAreaScanner::observe(std::string_view text) {
@@ -121,11 +162,17 @@ void PrintAreaScanner::observe_comment(std::string_view c) {
       }
     }
   }
+  constexpr std::string_view kFlavor = "FLAVOR:";
+  if (c.size() > kFlavor.size() && c.substr(0, kFlavor.size()) == kFlavor) {
+    if (found_.flavor.empty()) found_.flavor = std::string(trim(c.substr(kFlavor.size())));
+    return;
+  }
   constexpr std::string_view kSetting = "SETTING_3 ";
   if (c.size() > kSetting.size() && c.substr(0, kSetting.size()) == kSetting) {
     if (cura_settings_.size() < kMaxCuraSettings) cura_settings_.append(c.substr(kSetting.size()));
     return;
   }
+  constexpr std::string_view kS3dDiameters = "filamentDiameters,";  // Simplify3D
   std::string_view value;
   Box2 box;
   double v = 0;
@@ -136,6 +183,14 @@ void PrintAreaScanner::observe_comment(std::string_view c) {
              number_of(value, v) && v > 0) {
     found_.has_max_z = true;
     found_.max_z = v;
+  } else if (key_value(c, "gcode_flavor", value)) {
+    if (found_.flavor.empty()) found_.flavor = std::string(value);
+  } else if (((key_value(c, "filament_diameter", value) && first_number(value, v)) ||
+              (starts_with_nocase(trim(c), kS3dDiameters) && first_number(trim(c).substr(kS3dDiameters.size()), v)) ||
+              filament_diameter_comment(c, v)) &&
+             sane_diameter(v) && !found_.has_filament_diameter) {
+    found_.has_filament_diameter = true;
+    found_.filament_diameter = v;
   }
 }
 
@@ -161,6 +216,12 @@ PrintArea PrintAreaScanner::limits() const {
     if (!l.has_max_z && cura_setting(cura_settings_, "machine_height", h) && h > 0) {
       l.has_max_z = true;
       l.max_z = h;
+    }
+    double diameter = 0;
+    if (!l.has_filament_diameter && cura_setting(cura_settings_, "material_diameter", diameter) &&
+        sane_diameter(diameter)) {
+      l.has_filament_diameter = true;
+      l.filament_diameter = diameter;
     }
   }
   return l;

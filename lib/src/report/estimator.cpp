@@ -52,7 +52,9 @@ void Estimator::add(const Line& line, const Move& move) {
   if (line.letter == 'M') {
     if (options_.file_limits && limits_.apply(line)) return;
     switch (line.number) {
-      case 220:  // feed rate percentage
+      case 220:  // feed rate percentage; Marlin 2 and Prusa firmware: B backs it up, R restores it
+        if (line.has('B')) feed_backup_ = feed_percent_;
+        if (line.has('R')) feed_percent_ = feed_backup_;
         if (const Word* s = line.find('S'); s != nullptr && s->has_value && s->value() > 0) feed_percent_ = s->value();
         return;
       case 104: case 109: heat_wait(line, false); return;

@@ -102,7 +102,7 @@ bool PlannerLimits::apply(const Line& line) {
     case 207:  // firmware retraction: S length, F speed (mm/min); RepRapFirmware also R extra, T recover speed
       positive('S', fw_retract_length);
       positive('F', fw_retract_speed, 1.0 / 60);
-      if (const Word* w = line.find('R'); w != nullptr && w->has_value) fw_unretract_extra = w->value;
+      if (const Word* w = line.find('R'); w != nullptr && w->has_value) fw_unretract_extra = w->value();
       positive('T', fw_unretract_speed, 1.0 / 60);
       fw_retract_set_ = true;
       return true;

@@ -11,7 +11,9 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "gcode/cli/io.hpp"
 #include "gcode/cli/tool.hpp"
@@ -21,6 +23,12 @@
 #include "gcode/pipeline/writer.hpp"
 
 namespace gcode::cli {
+
+// What one reading of a whole input finds before the real run.
+struct InputScan {
+  std::vector<LayerInfo> layers;      // every layer, in order (index 1, 2, ...)
+  std::vector<std::string> features;  // the ;TYPE: names, in order of first appearance
+};
 
 class Filter {
  public:
@@ -35,6 +43,11 @@ class Filter {
   // The layers in the input: reads it once (a pipe is kept in a temp file
   // first) and goes back to its start.
   int count_layers();
+  // Every layer (number, Z, height) and every ;TYPE: name of the input, for
+  // a tool that must know them before its first byte goes out (a ramp across
+  // the chosen layers, a check of --types): reads the input once, as
+  // count_layers does, and goes back to its start.
+  InputScan scan();
   // Parses a selection and, when a range counts from the end, counts the
   // layers first. Throws UsageError when it does not parse.
   LayerSelection selection(const SelectionText& text);

@@ -11,6 +11,17 @@
 //                                        machine_depth = 220\\n machine_height = 250 ...}
 //   Ultimaker Griffin header             ;PRINT.SIZE.MIN.X:94 ... ;PRINT.SIZE.MAX.Z:20.4
 //
+// and about the material and the firmware, for tools that compute flow or
+// choose between firmware commands:
+//
+//   PrusaSlicer / Slic3r / Orca          ; filament_diameter = 1.75   (first of a list)
+//                                        ; gcode_flavor = marlin2
+//   Cura front end machine settings      ;SETTING_3 {... material_diameter = 2.85 ...}
+//   CuraEngine header                    ;FLAVOR:Marlin
+//   Simplify3D                           ;   filamentDiameters,1.75|1.75
+//   Cura 15 / Craftware / IdeaMaker      ;Filament Diameter: 2.85   ;Filament diameter: 1.75mm
+//                                        ;Filament Diameter #0: 1.75
+//
 // Prusa puts its config after the G-code, so a tool that needs the bed before
 // the first pause reads a regular file's head and tail first (scan_file), and
 // on a pipe only what it has seen (the header, for Cura).
@@ -30,6 +41,9 @@ struct PrintArea {
   Box2 print_box;         // the print's XY extent, when the slicer wrote it
   bool has_print_top = false;
   double print_top = 0;   // the print's highest Z, when the slicer wrote it
+  bool has_filament_diameter = false;
+  double filament_diameter = 0;  // mm (the first extruder's)
+  std::string flavor;     // the slicer's firmware flavour as written ("marlin2", "Marlin", "klipper"); "" unknown
 
   // Fills what `other` knows and this does not.
   void merge(const PrintArea& other);

@@ -118,6 +118,7 @@ class Estimator {
   TimeSink* sink_;
   std::int64_t tag_ = 0;
   double feed_percent_ = 100;
+  double feed_backup_ = 100;  // M220 B
 
   // Look-ahead ring: blocks [head_, head_ + count_) modulo capacity.
   std::vector<Block> ring_;
