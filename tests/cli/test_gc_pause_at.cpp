@@ -78,12 +78,23 @@ std::vector<Block> check_output(const std::string& name, const std::string& orig
   std::vector<std::string> in = split_lines(original);
   std::vector<std::string> out = split_lines(output);
   const std::string marker = marker_of(original);
+  // With the slicer's own layer heights (tests/fixtures/expected), layers are
+  // counted from them: an extrusion ending in (z[k-1], z[k]] is in layer k+1
+  // (a spiral turn climbs through its band), after layer 1 has begun (a
+  // start-code purge is no layer).
+  std::vector<double> zs;
+  if (auto e = gctest::expected_data(name); !e.is_null()) zs = e["z"].get<std::vector<double>>();
+  int bands_started = 0, top_band = 0;
+  std::vector<int> bands_at_block;
+  auto band_of = [&zs](double z) {
+    return static_cast<int>(std::lower_bound(zs.begin(), zs.end(), z - 1e-6) - zs.begin()) + 1;
+  };
 
   // The print's XY box: every extrusion after the first layer marker (or,
   // unmarked, every extrusion but a purge line at the bed's edge: x or y < 10).
   double bx0 = 1e9, by0 = 1e9, bx1 = -1e9, by1 = -1e9;
   {
-    gcode::MachineState s;
+    gcode::MachineState s = gctest::initial_state(original);
     bool in_layers = marker.empty();
     for (const std::string& l : in) {
       if (!marker.empty() && starts_with(l, marker.c_str())) in_layers = true;
@@ -99,7 +110,7 @@ std::vector<Block> check_output(const std::string& name, const std::string& orig
     }
   }
 
-  gcode::MachineState so, sr;  // output, original
+  gcode::MachineState sr = gctest::initial_state(original), so = sr;  // original, output
   std::vector<Block> blocks;
   std::size_t i = 0, j = 0;
   int markers_seen = 0;
@@ -161,6 +172,7 @@ std::vector<Block> check_output(const std::string& name, const std::string& orig
       blocks.push_back(b);
       markers_at_block.push_back(markers_seen);
       levels_at_block.push_back(z_levels);
+      bands_at_block.push_back(top_band);
       last_z_at_block.push_back(last_extrusion_z);
       blocks_waiting_for_extrusion.push_back(blocks.size() - 1);
       continue;
@@ -191,9 +203,14 @@ std::vector<Block> check_output(const std::string& name, const std::string& orig
     if (mr.extruding) {
       double z = mr.end[gcode::kZ];
       if (z_levels == 0 || std::fabs(mr.start[gcode::kZ] - last_extrusion_z) > 1e-6) ++z_levels;
+      int band = zs.empty() ? 0 : band_of(z);
+      if (band == 1) bands_started = 1;
+      if (bands_started) top_band = std::max(top_band, band);
       // (e) the first extrusion after a pause is already in the next layer.
       for (std::size_t b : blocks_waiting_for_extrusion) {
-        if (!marker.empty()) {
+        if (!zs.empty()) {
+          CHECK(band > bands_at_block[b]);
+        } else if (!marker.empty()) {
           CHECK(markers_seen > markers_at_block[b]);
         } else {
           CHECK(std::fabs(mr.start[gcode::kZ] - last_z_at_block[b]) > 1e-6);
@@ -211,7 +228,9 @@ std::vector<Block> check_output(const std::string& name, const std::string& orig
   // (Cura's ;LAYER:n, PrusaSlicer's ;LAYER_CHANGE) or from extrusion heights.
   REQUIRE(blocks.size() == kPauseLayers.size());
   for (std::size_t b = 0; b < blocks.size(); ++b) {
-    if (!marker.empty()) {
+    if (!zs.empty()) {
+      CHECK(bands_at_block[b] == kPauseLayers[b] - 1);
+    } else if (!marker.empty()) {
       CHECK(markers_at_block[b] == kPauseLayers[b] - 1);
     } else {
       CHECK(levels_at_block[b] == kPauseLayers[b] - 1);

@@ -101,7 +101,7 @@ inline SpeedCheck check_speed(std::string_view input, std::string_view output, c
   const double kPi = 3.141592653589793;
   const double area = kPi / 4 * rule.filament * rule.filament;
   const std::string marker = " ; " + rule.mark;
-  gcode::MachineState si, so;
+  gcode::MachineState si = initial_state(input), so = si;
   int input_decimals = 0;  // the most F decimals the input uses
   for (const std::string& l : in) {
     gcode::Line line = gcode::Line::parse(d::strip_ending(l));

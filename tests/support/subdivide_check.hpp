@@ -107,7 +107,7 @@ inline SubdivideCheck check_subdivision(std::string_view input, std::string_view
   using namespace gcode;
   SubdivideCheck r;
   std::vector<std::string> in = split_lines(input), out = split_lines(output);
-  MachineState is, os;
+  MachineState is = initial_state(input), os = is;
   std::size_t j = 0;
   auto fail = [&](std::size_t i, const std::string& what) {
     r.failures.push_back("input line " + std::to_string(i + 1) + ": " + what + ": " +

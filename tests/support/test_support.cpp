@@ -14,6 +14,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "gcode/core/e_mode.hpp"
 #include "gcode/core/line.hpp"
 #include "gcode/core/line_reader.hpp"
 
@@ -125,9 +126,27 @@ std::vector<std::string> split_lines(std::string_view text) {
   return lines;
 }
 
+gcode::MachineState initial_state(std::string_view text) {
+  gcode::MachineState state;
+  std::size_t tail = text.size() > (1u << 16) ? text.size() - (1u << 16) : 0;
+  gcode::EModeGuess g = gcode::guess_e_mode(text.substr(0, std::min<std::size_t>(text.size(), 1u << 20)), text.substr(tail));
+  if (!g.file_sets_mode && g.guessed) {
+    state.relative_e = g.relative;
+    state.e_follows_g90 = false;
+  }
+  return state;
+}
+
+std::string without_e_mode_warning(const std::string& err) {
+  std::string out;
+  for (const std::string& l : split_lines(err))
+    if (l.find("never sets the E mode (M82/M83)") == std::string::npos) out += l;
+  return out;
+}
+
 std::vector<ReplayedMove> replay_moves(std::string_view text) {
   std::vector<ReplayedMove> moves;
-  gcode::MachineState state;
+  gcode::MachineState state = initial_state(text);
   gcode::MemoryLineSplitter split(text);
   gcode::RawLine raw;
   std::size_t index = 0;
@@ -152,7 +171,7 @@ int e_mode_commands(std::string_view text) {
 }
 
 gcode::MachineState replay_state(std::string_view text) {
-  gcode::MachineState state;
+  gcode::MachineState state = initial_state(text);
   gcode::MemoryLineSplitter split(text);
   gcode::RawLine raw;
   while (split.next(raw)) state.apply(gcode::Line::parse(raw.text));

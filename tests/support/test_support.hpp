@@ -54,6 +54,13 @@ struct ReplayedMove {
   gcode::MachineState after;
   std::size_t line_index;  // 0-based line in the text
 };
+// The state a file starts from, as its slicer meant it: for a file that
+// never says M82/M83, the E mode its config or its E values show (the
+// library's e_mode.hpp; the fixtures' expected data checks that reading).
+gcode::MachineState initial_state(std::string_view text);
+// `err` without the one warning a tool gives on a file that never sets its
+// E mode (that warning is expected there; anything else is not).
+std::string without_e_mode_warning(const std::string& err);
 std::vector<ReplayedMove> replay_moves(std::string_view text);
 // How many M82/M83 (E mode) commands a text holds.
 int e_mode_commands(std::string_view text);

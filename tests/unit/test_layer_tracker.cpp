@@ -56,20 +56,23 @@ TEST_CASE("every line comes out once, in order", "[layer_tracker][property]") {
 }
 
 TEST_CASE("unmarked files: a layer starts at extrusion on a new Z, hops do not count", "[layer_tracker]") {
+  // Slic3r's start code purges at Z 0.3 before a 0.2 mm first layer: a first
+  // extrusion height above the next is start code (the slicer counts no layer there).
   std::string text =
       "G28\nG1 Z5 F600\nG1 Z0.3\nG1 X0 Y0\nG1 X50 E3 ; purge\n"
       "G1 Z0.2\nG1 X10 Y10\nG1 X20 E4\nG1 E3.2 ; retract\nG1 Z0.6 ; hop\nG1 X30\nG1 Z0.2\nG1 E4\nG1 X40 E5\n"
       "G1 E4.2\nG1 Z0.4\nG1 X10\nG1 X20 E6\nG1 E5\nG1 Z10\nM104 S0\n";
   Recorded r = track(text);
-  REQUIRE(r.layers.size() == 3);
-  CHECK(r.layers[0].z == Approx(0.3));
-  CHECK(r.layers[1].z == Approx(0.2));
-  CHECK(r.layers[2].z == Approx(0.4));
-  CHECK(layer_of(r, "G1 Z0.3") == 1);      // the move down to the first layer belongs to it
+  REQUIRE(r.layers.size() == 2);
+  CHECK(r.layers[0].z == Approx(0.2));
+  CHECK(r.layers[1].z == Approx(0.4));
+  CHECK(layer_of(r, "G1 Z0.3") == 0);
+  CHECK(layer_of(r, "G1 X50 E3 ; purge") == 0);
+  CHECK(layer_of(r, "G1 Z0.2") == 1);      // the move down to the first layer belongs to it
   CHECK(layer_of(r, "G1 Z5 F600") == 0);
-  CHECK(layer_of(r, "G1 Z0.6 ; hop") == 2);
-  CHECK(layer_of(r, "G1 E4.2") == 2);      // retract after the last extrusion stays in its layer
-  CHECK(layer_of(r, "G1 Z0.4") == 3);
+  CHECK(layer_of(r, "G1 Z0.6 ; hop") == 1);
+  CHECK(layer_of(r, "G1 E4.2") == 1);      // retract after the last extrusion stays in its layer
+  CHECK(layer_of(r, "G1 Z0.4") == 2);
   CHECK(layer_of(r, "G1 E5") == -1);       // end code starts after the last extrusion
   CHECK(layer_of(r, "M104 S0") == -1);
   CHECK(r.saw_end);
@@ -115,9 +118,24 @@ TEST_CASE("vase mode: with markers, rising Z inside extrusion starts no layer", 
   CHECK(r.layers.size() == 2);
 }
 
-TEST_CASE("unmarked vase: Z rising within extruding moves starts no layer", "[layer_tracker]") {
-  std::string text = "G1 Z0.2\nG1 X10 E1\nG1 Z0.4\nG1 X0 E2\nG1 Z0.402 X10 E3\nG1 Z0.404 X0 E4\nG1 Z0.406 X10 E5\n";
-  CHECK(track(text).layers.size() == 2);
+TEST_CASE("unmarked vase: the spiral wall has one layer per layer height of climb", "[layer_tracker]") {
+  // Two solid layers of 0.2 mm, then a wall climbing 0.1 mm per move: its
+  // turns are layers 3, 4 and 5, each ending one layer height higher, and a
+  // turn starts with the first move whose end passes the previous turn's top.
+  std::string text = "G1 Z0.2\nG1 X10 E1\nG1 Z0.4\nG1 X0 E2\n";
+  for (int i = 1; i <= 6; ++i) text += "G1 Z" + std::to_string(0.4 + 0.1 * i).substr(0, 3) + " X" + (i % 2 ? "10" : "0") + " E" + std::to_string(2 + i) + "\n";
+  Recorded r = track(text);
+  REQUIRE(r.layers.size() == 5);
+  CHECK(r.layers[2].z == Approx(0.6));
+  CHECK(r.layers[3].z == Approx(0.8));
+  CHECK(r.layers[4].z == Approx(1.0));
+  CHECK(r.layers[4].height == Approx(0.2));
+  CHECK(layer_of(r, "G1 Z0.5 X10 E3") == 3);
+  CHECK(layer_of(r, "G1 Z0.6 X0 E4") == 3);
+  CHECK(layer_of(r, "G1 Z0.7 X10 E5") == 4);
+  CHECK(layer_of(r, "G1 Z1.0 X0 E8") == 5);
+  // A single climbing move inside the first turn is still that turn.
+  CHECK(track("G1 Z0.2\nG1 X10 E1\nG1 Z0.4\nG1 X0 E2\nG1 Z0.402 X10 E3\nG1 Z0.404 X0 E4\n").layers.size() == 3);
 }
 
 TEST_CASE("Simplify3D, Orca and user markers", "[layer_tracker]") {

@@ -1,9 +1,16 @@
 #include "gcode/cli/filter.hpp"
 
+#include <cstdio>
+#include <stdexcept>
+
+#include "gcode/core/e_mode.hpp"
+#include "gcode/core/file_ends.hpp"
+
 namespace gcode::cli {
 
-int count_layers(int fd, const LayerMarkers& markers) {
+int count_layers(int fd, const LayerMarkers& markers, int e_relative) {
   Pipeline counting(markers);
+  if (e_relative == 0 || e_relative == 1) counting.set_e_mode(e_relative == 1);
   counting.run(fd);
   return counting.tracker().layer_count();
 }
@@ -11,9 +18,35 @@ int count_layers(int fd, const LayerMarkers& markers) {
 Filter::Filter(const FilterOptions& options, PipelineOptions pipeline)
     : options_(options), markers_(options.markers()), input_(options.file), pipeline_(markers_, pipeline) {}
 
+bool Filter::e_mode() {
+  if (e_relative_ >= 0) return e_relative_ == 1;
+  EModeChoice choice = EModeChoice::Auto;
+  parse_e_mode(options_.e_mode, choice);
+  FileEnds ends;
+  bool regular = read_file_ends(input_.fd(), 1 << 20, 1 << 16, ends);
+  EModeGuess guess = guess_e_mode(regular ? std::string_view(ends.head) : pipeline_.read_ahead(input_.fd(), 1 << 20),
+                                  regular ? std::string_view(ends.tail) : std::string_view());
+  if (guess.file_sets_mode) {
+    e_relative_ = 2;
+    return false;
+  }
+  bool relative = choice == EModeChoice::Auto ? guess.guessed && guess.relative : choice == EModeChoice::Relative;
+  if (choice == EModeChoice::Auto && guess.guessed && options_.verbosity() >= 0)
+    std::fprintf(stderr, "%s: warning: %s never sets the E mode (M82/M83); reading its E values as %s: %s "
+                 "(--e-mode relative|absolute to say)\n",
+                 options_.tool.c_str(), input_.name().c_str(), relative ? "relative" : "absolute", guess.reason.c_str());
+  e_relative_ = relative ? 1 : 0;
+  pipeline_.set_e_mode(relative);
+  return relative;
+}
+
 int Filter::count_layers() {
+  // A pipe is kept in a temp file first: nothing may have been read ahead
+  // into the pipeline yet (the E mode is guessed from the file afterwards).
+  if (!pipeline_.buffered().empty()) throw std::logic_error("Filter::count_layers after reading ahead");
   input_.make_seekable();
-  int layers = cli::count_layers(input_.fd(), markers_);
+  e_mode();
+  int layers = cli::count_layers(input_.fd(), markers_, e_relative_);
   input_.rewind();
   return layers;
 }
@@ -65,7 +98,13 @@ PrintArea Filter::print_area() {
   return scan_text_limits(pipeline_.read_header(input_.fd()));
 }
 
+void Filter::run() {
+  e_mode();
+  pipeline_.run(input_.fd());
+}
+
 void Filter::write(const std::function<void()>& verify) {
+  e_mode();
   file_.emplace(options_.in_place ? std::string() : options_.output, options_.in_place ? options_.file : std::string());
   buffer_.emplace(file_->fd());
   writer_.emplace(*buffer_);

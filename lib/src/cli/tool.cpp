@@ -48,6 +48,7 @@ Tool::Tool(std::string name, std::string description) : name_(std::move(name)), 
 void Tool::add_filter_options(FilterOptions& o, unsigned parts) {
   filter_ = &o;
   parts_ = parts;
+  o.tool = name_;
   if (parts & kInput) app_.add_option("FILE", o.file, "G-code file; - or absent: standard input")->type_name("FILE");
   CLI::Option* out = nullptr;
   if (parts & kOutput) out = app_.add_option("-o,--output", o.output, "Write to FILE instead of standard output")->type_name("FILE");
@@ -60,6 +61,11 @@ void Tool::add_filter_options(FilterOptions& o, unsigned parts) {
     app_.add_option("--layer-marker", o.layer_marker,
                     "RE2 pattern that marks a layer start in a comment (first group: the slicer's number)")
         ->type_name("REGEX");
+  if (parts & kEMode)
+    app_.add_option("--e-mode", o.e_mode,
+                    "E values of a file that never says M82/M83: relative, absolute, or auto (guessed, with a warning)")
+        ->type_name("MODE")
+        ->check(CLI::IsMember({"auto", "relative", "absolute"}));
   if (parts & kVerbosity) {
     app_.add_flag("-q,--quiet", o.quiet, "Only errors on standard error");
     app_.add_flag("-v,--verbose", o.verbose, "More messages on standard error");

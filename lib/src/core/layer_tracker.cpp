@@ -74,9 +74,14 @@ void LayerTracker::push(const RawLine& raw) {
     for (const Word& w : line)
       if (w.has_value) precision_->observe(w.letter, w.decimals);
   CommentInfo info;
-  if (line.kind == CommandKind::None && !line.comment.empty()) {
-    info = markers_.classify(line.comment_text());
-    if (info.is_type) feature_ = feature_id(info.type);
+  if (!line.comment.empty()) {
+    if (line.kind == CommandKind::None) {
+      info = markers_.classify(line.comment_text());
+      if (info.is_type) feature_ = feature_id(info.type);
+    } else if (line.is_move()) {
+      // Slic3r's verbose layer move: "G1 Z0.6 F9000 ; move to next layer (2)".
+      info = markers_.classify_move(line.comment_text());
+    }
   }
   previous_ = state_;
   Move move = state_.apply(line);
@@ -124,6 +129,13 @@ void LayerTracker::hold(const View& v) {
 
 void LayerTracker::resolve_undecided(LayerMode mode) {
   mode_ = mode;
+  // Unmarked files often start with a purge line above the first layer
+  // (Slic3r's start code draws one at Z 0.3 before a 0.2 mm first layer):
+  // a first extrusion height above the next one is start code, not a layer.
+  if (mode == LayerMode::Heuristic && undecided_z_.size() >= 2 && undecided_z_[0] > undecided_z_[1] + kSameZ) {
+    skip_first_z_ = true;
+    first_z_ = undecided_z_[0];
+  }
   Held old = std::move(pending_);
   pending_.clear();
   MachineState initial;
@@ -153,10 +165,13 @@ const MachineState& LayerTracker::tail_state_before(std::size_t index) const {
   return index == 0 ? before_tail_ : tail_[index - 1].after;
 }
 
-void LayerTracker::begin_layer(LayerInfo info, std::size_t boundary) {
+void LayerTracker::begin_layer(LayerInfo info, std::size_t boundary, const View& extrusion) {
   info.index = ++layers_;
   region_ = Region::Layer;
-  sink_.on_layer(info, tail_state_before(boundary));
+  layer_height_ = info.height;
+  // A boundary at the extrusion itself (nothing held before it) has the
+  // extrusion's own before-state.
+  sink_.on_layer(info, tail_.empty() ? extrusion.before : tail_state_before(boundary));
 }
 
 void LayerTracker::resolve_markers(const View& extrusion) {
@@ -223,10 +238,29 @@ void LayerTracker::resolve_markers(const View& extrusion) {
                              : items[groups[g].index].after.position[kZ];
     double previous_z = layers_ > 0 ? layer_z_ : 0;
     info.height = groups[g].has_height ? groups[g].height : info.z - previous_z;
+    // Slic3r's verbose layer moves: a support and an object "layer" at the
+    // same printed Z are one layer; in a spiral vase the move sits at the
+    // previous layer's Z and the turn climbs one layer height from there.
+    bool continues = false;
+    if (groups[g].kinds == kind_bit(MarkerKind::LayerMove) && layers_ > 0) {
+      const Move& m = extrusion.move;
+      bool climbs = last && m.end[kZ] > m.start[kZ] + kSameZ;
+      double h = layer_height_ > kSameZ ? layer_height_ : info.z - previous_z;
+      if (climbs && h > kSameZ) {
+        info.z += h;
+        info.height = h;
+      } else if (std::fabs(info.z - previous_z) <= kSameZ) {
+        continues = true;
+      }
+    }
     info.empty = !last;
     info.first_line = from < items.size() ? items[from].number : extrusion.raw.number;
     info.offset = from < items.size() ? items[from].offset : extrusion.raw.offset;
-    begin_layer(info, from);
+    if (continues) {
+      emit_tail(from, to);
+      continue;
+    }
+    begin_layer(info, from, extrusion);
     layer_z_ = info.z;
     emit_tail(from, to);
   }
@@ -235,8 +269,13 @@ void LayerTracker::resolve_markers(const View& extrusion) {
 void LayerTracker::resolve_heuristic(const View& extrusion) {
   const Held& items = tail_;
   double z = extrusion.move.start[kZ];
+  if (spiral_turn(extrusion)) return;
   if (layers_ > 0 && std::fabs(z - layer_z_) <= kSameZ) {
     emit_tail(0, items.size());
+    return;
+  }
+  if (layers_ == 0 && skip_first_z_ && std::fabs(z - first_z_) <= kSameZ) {
+    emit_tail(0, items.size());  // the purge: start code
     return;
   }
   // First layer: the move that went down to it. Later layers: the first Z
@@ -253,8 +292,48 @@ void LayerTracker::resolve_heuristic(const View& extrusion) {
   info.height = layers_ > 0 ? z - layer_z_ : z;
   info.first_line = boundary < items.size() ? items[boundary].number : extrusion.raw.number;
   info.offset = boundary < items.size() ? items[boundary].offset : extrusion.raw.offset;
-  begin_layer(info, boundary);
+  begin_layer(info, boundary, extrusion);
   emit_tail(boundary, items.size());
+}
+
+// A spiral wall (vase mode without markers) climbs inside every extruding
+// move, so no move starts at a new height. Its layers are its turns: the
+// first climbing extrusion starts a turn one layer height above the last
+// solid layer, and each move whose end passes the turn's top starts the next.
+// Returns whether the extrusion was handled here.
+bool LayerTracker::spiral_turn(const View& extrusion) {
+  const Move& m = extrusion.move;
+  const bool climbs = m.end[kZ] > m.start[kZ] + kSameZ && m.xy_length > 0;
+  if (layers_ == 0 || (!spiral_ && !climbs)) return false;
+  double h = layer_height_;
+  if (!spiral_) {
+    if (!(h > kSameZ)) return false;
+    spiral_ = true;
+    turn_top_ = layer_z_;
+  } else if (!climbs && std::fabs(m.start[kZ] - layer_z_) > kSameZ) {
+    spiral_ = false;  // the wall ended: solid layers again
+    return false;
+  } else if (!(m.end[kZ] > turn_top_ + kSameZ)) {
+    emit_tail(0, tail_.size());
+    return true;
+  }
+  // The boundary: the first Z change held before this move, else the move.
+  std::size_t boundary = tail_.size();
+  for (std::size_t i = 0; i < tail_.size(); ++i)
+    if (tail_[i].move.z_changed) {
+      boundary = i;
+      break;
+    }
+  emit_tail(0, boundary);
+  turn_top_ += h;
+  LayerInfo info;
+  info.z = turn_top_;
+  info.height = h;
+  info.first_line = boundary < tail_.size() ? tail_[boundary].number : extrusion.raw.number;
+  info.offset = boundary < tail_.size() ? tail_[boundary].offset : extrusion.raw.offset;
+  begin_layer(info, boundary, extrusion);
+  emit_tail(boundary, tail_.size());
+  return true;
 }
 
 void LayerTracker::emit(const View& v) {

@@ -145,8 +145,11 @@ void apply_temperature(MachineState& s, const Line& line) {
 
 void apply_m(MachineState& s, const Line& line) {
   switch (line.number) {
-    case 82: s.relative_e = false; break;
-    case 83: s.relative_e = true; break;
+    case 82: case 83:
+      s.relative_e = line.number == 83;
+      s.e_mode_set = true;
+      s.e_follows_g90 = true;
+      break;
     case 104: case 109: apply_temperature(s, line); break;
     case 140: case 190: {
       const Word* t = line.find('S');
@@ -222,8 +225,14 @@ Move MachineState::apply(const Line& line) {
       m.kind = MoveKind::Home;
       m.end = position;
       return m;
-    case 90: relative_xyz = false; relative_e = false; return m;
-    case 91: relative_xyz = true; relative_e = true; return m;
+    case 90: case 91:
+      relative_xyz = line.number == 91;
+      if (e_follows_g90) {
+        // Marlin: G90/G91 set the E mode as well; the file has said it.
+        relative_e = relative_xyz;
+        e_mode_set = true;
+      }
+      return m;
     case 92:
       if (line.has('Z')) lifted = false;
       apply_set_position(*this, line);
@@ -241,7 +250,8 @@ namespace gcode {
 
 bool same_machine(const MachineState& a, const MachineState& b) {
   return a.exact == b.exact && a.offset == b.offset && a.known == b.known && a.feedrate == b.feedrate &&
-         a.relative_xyz == b.relative_xyz && a.relative_e == b.relative_e && a.inches == b.inches &&
+         a.relative_xyz == b.relative_xyz && a.relative_e == b.relative_e && a.e_mode_set == b.e_mode_set &&
+         a.e_follows_g90 == b.e_follows_g90 && a.inches == b.inches &&
          a.firmware_retracted == b.firmware_retracted && a.uses_firmware_retraction == b.uses_firmware_retraction &&
          a.tool == b.tool && a.hotend_target == b.hotend_target && a.bed_target == b.bed_target && a.fan == b.fan &&
          a.lifted == b.lifted && a.lift_base_z == b.lift_base_z;

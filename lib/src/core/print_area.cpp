@@ -8,6 +8,7 @@
 #include <cmath>
 #include <vector>
 
+#include "gcode/core/file_ends.hpp"
 #include "gcode/core/line_reader.hpp"
 #include "gcode/core/number.hpp"
 
@@ -244,39 +245,14 @@ void scan_lines(std::string_view text, bool skip_first, PrintAreaScanner& scanne
   }
 }
 
-bool read_at(int fd, std::vector<char>& buffer, std::size_t size, off_t at) {
-  buffer.resize(size);
-  std::size_t done = 0;
-  while (done < size) {
-    ssize_t n = ::pread(fd, buffer.data() + done, size - done, at + static_cast<off_t>(done));
-    if (n < 0) return false;
-    if (n == 0) break;
-    done += static_cast<std::size_t>(n);
-  }
-  buffer.resize(done);
-  return true;
-}
-
 }  // namespace
 
 bool scan_file_limits(int fd, PrintArea& limits) {
-  struct stat st {};
-  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) return false;
-  std::size_t size = static_cast<std::size_t>(st.st_size);
+  FileEnds ends;
+  if (!read_file_ends(fd, kHeadBytes, kTailBytes, ends)) return false;
   PrintAreaScanner scanner;
-  std::vector<char> buffer;
-  if (size <= kHeadBytes + kTailBytes) {
-    if (!read_at(fd, buffer, size, 0)) return false;
-    scan_lines(std::string_view(buffer.data(), buffer.size()), false, scanner);
-  } else {
-    if (!read_at(fd, buffer, kHeadBytes, 0)) return false;
-    // Drop the last, possibly cut, line of the head.
-    std::string_view head(buffer.data(), buffer.size());
-    head = head.substr(0, head.rfind('\n') + 1);
-    scan_lines(head, false, scanner);
-    if (!read_at(fd, buffer, kTailBytes, static_cast<off_t>(size - kTailBytes))) return false;
-    scan_lines(std::string_view(buffer.data(), buffer.size()), true, scanner);
-  }
+  scan_lines(ends.head, false, scanner);
+  scan_lines(ends.tail, true, scanner);
   limits = scanner.limits();
   return true;
 }

@@ -103,6 +103,19 @@ std::string_view Pipeline::read_header(int fd, std::size_t max_bytes) {
   }
 }
 
+std::string_view Pipeline::read_ahead(int fd, std::size_t bytes) {
+  while (!splitter_.ended() && splitter_.pending().size() < bytes) {
+    char* room = splitter_.room();
+    std::size_t n = gcode::read_some(fd, room, splitter_.room_size());
+    if (n == 0) {
+      splitter_.end_of_input();
+    } else {
+      splitter_.commit(n);
+    }
+  }
+  return splitter_.pending();
+}
+
 void Pipeline::finish() {
   if (finished_) return;
   wire();

@@ -82,7 +82,9 @@ std::string layer_table_text(const LayerTable& table, const LayerTracker& tracke
     table_row(out, "end", "-", "-", "-", table.end_code(), "-", t ? time_columns(t->end, t->total()) : std::string());
   double grams = filament_mass_g(table.layers_extruded(), o.filament_diameter, o.density);
   fmt::format_to(std::back_inserter(out), "\n{} layers ({}), {} lines, {} bytes\n", table.layers().size(),
-                 o.mode == LayerMode::Heuristic ? "found by Z, no layer markers" : "from slicer markers",
+                 o.mode == LayerMode::Heuristic ? "found by Z, no layer markers"
+                 : o.mode == LayerMode::Spiral  ? "turns of a spiral wall, no layer markers"
+                                                : "from slicer markers",
                  table.total_lines(), table.total_bytes());
   fmt::format_to(std::back_inserter(out),
                  "filament: {:.1f} mm = {:.2f} m, {:.2f} g at {} g/cm3, {} mm (layers; whole file net {:.1f} mm)\n",
@@ -105,7 +107,7 @@ std::string layer_table_json(const LayerTable& table, const LayerTracker& tracke
   std::string out = "{\n  \"schema\": \"gc-layers/1\",\n  \"file\": ";
   append_json_string(out, o.file_name);
   fmt::format_to(std::back_inserter(out), ",\n  \"layer_mode\": \"{}\",\n  \"start_code\": {{",
-                 o.mode == LayerMode::Heuristic ? "heuristic" : "markers");
+                 o.mode == LayerMode::Heuristic ? "heuristic" : o.mode == LayerMode::Spiral ? "spiral" : "markers");
   append_region(out, table.start_code());
   if (o.times) fmt::format_to(std::back_inserter(out), ", \"time_s\": {:.3f}", o.times->start);
   out += "},\n  \"end_code\": ";

@@ -172,14 +172,16 @@ PauseBlock build_pause(const PausePoint& point, const PauseConfig& c) {
   const Precision& precision = point.precision != nullptr ? *point.precision : defaults;
   const Fixed z0 = s.at(kZ);
   const std::string e_mode = s.relative_e ? "M83" : "M82";
-  Extruder e(s.relative_e, s.at(kE), precision);
-  const int zd = precision.of('Z'), fd = precision.of('F');
-
   // The block moves in absolute XYZ. On Marlin G90 also makes E absolute, so
-  // the file's E mode is set again right after it.
+  // the file's E mode is set again right after it, if the file ever set one;
+  // a file that never did keeps its mode untouched (issue 11) and the block
+  // extrudes in the mode in force after the G90.
+  const bool block_relative_e = s.relative_xyz && !s.e_mode_set && s.e_follows_g90 ? false : s.relative_e;
+  Extruder e(block_relative_e, s.at(kE), precision);
+  const int zd = precision.of('Z'), fd = precision.of('F');
   if (s.relative_xyz) {
     p.emplace_back("G90");
-    p.push_back(e_mode);
+    if (s.e_mode_set) p.push_back(e_mode);
   }
 
   // Retract, unless the file already did (a second retraction would be
@@ -316,12 +318,13 @@ PauseBlock build_pause(const PausePoint& point, const PauseConfig& c) {
   e.move(r, we_e, c.unretract_speed);
   if (we_fw) r.emplace_back("G11");
   if (s.relative_xyz) r.emplace_back("G91");
-  // Always: custom lines or the firmware's own pause routine may have changed it.
-  r.push_back(e_mode);
+  // Custom lines or the firmware's own pause routine may have changed it;
+  // never written into a file that does not set it itself.
+  if (s.e_mode_set) r.push_back(e_mode);
   // Absolute E: the file's next E word is a coordinate. Relative E after an
   // unload/purge: a later switch to M82 (Cura appends one to its end code)
   // would otherwise start from a shifted coordinate.
-  if (!s.relative_e || e.pushed()) r.push_back("G92 E" + exact_text(s.at(kE)));
+  if (!s.relative_e || block_relative_e != s.relative_e || e.pushed()) r.push_back("G92 E" + exact_text(s.at(kE)));
   if (s.feedrate > 0) r.push_back("G1 F" + exact_text(Fixed::from_double(s.feedrate)));
   block.net_filament = e.net();
   return block;

@@ -56,6 +56,11 @@ class Filter {
   // from a pipe only the header, which stays buffered for the run.
   PrintArea print_area();
 
+  // The E mode of a file that never says M82/M83 (--e-mode, else guessed
+  // from the file with one warning); applied to every pass over the input.
+  // Returns whether E is read as relative where the file does not say.
+  bool e_mode();
+
   void add(Stage& stage) { pipeline_.add(stage); }
   // Opens the output, adds the writer after the tool's stages and runs the
   // whole input through; then `verify` (if given) checks what the run found
@@ -63,13 +68,14 @@ class Filter {
   // everything succeeded.
   void write(const std::function<void()>& verify = {});
   // Runs the stages without any G-code output (reports).
-  void run() { pipeline_.run(input_.fd()); }
+  void run();
   // The writer's output, once write() opened it (for counts in messages).
   const OutputBuffer* output() const { return buffer_ ? &*buffer_ : nullptr; }
 
  private:
   const FilterOptions& options_;
   LayerMarkers markers_;
+  int e_relative_ = -1;  // -1 not decided yet, else 0/1 (2: the file sets it)
   InputFile input_;
   Pipeline pipeline_;
   std::optional<OutputFile> file_;
@@ -77,7 +83,8 @@ class Filter {
   std::optional<GcodeWriter> writer_;
 };
 
-// Counts the layers of everything `fd` delivers (no output).
-int count_layers(int fd, const LayerMarkers& markers);
+// Counts the layers of everything `fd` delivers (no output); `e_relative`:
+// 1 or 0 for a file that never sets the E mode, -1 to leave it to the file.
+int count_layers(int fd, const LayerMarkers& markers, int e_relative = -1);
 
 }  // namespace gcode::cli

@@ -41,6 +41,8 @@ struct FilterOptions {
   bool quiet = false;        // -q
   int verbose = 0;           // -v (repeatable)
   std::string layer_marker;  // --layer-marker REGEX
+  std::string e_mode = "auto";  // --e-mode: for files that never say M82/M83
+  std::string tool;          // the program's name, for messages (set by Tool)
 
   // -1 errors only, 0 warnings, 1 and more: information.
   int verbosity() const { return quiet ? -1 : verbose; }
@@ -55,7 +57,8 @@ enum FilterParts : unsigned {
   kInPlace = 4,      // -i (needs FILE)
   kVerbosity = 8,    // -q, -v
   kLayerMarker = 16, // --layer-marker
-  kFilter = kInput | kOutput | kInPlace | kVerbosity | kLayerMarker,
+  kEMode = 32,       // --e-mode
+  kFilter = kInput | kOutput | kInPlace | kVerbosity | kLayerMarker | kEMode,
 };
 
 class Tool {

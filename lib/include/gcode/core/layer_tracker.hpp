@@ -84,7 +84,10 @@ class LayerSink {
   virtual void on_line(const TrackedLine& line) = 0;
 };
 
-enum class LayerMode : std::uint8_t { Undecided, Markers, Heuristic };
+// How the layers of a file were found: the slicer's markers, the heights of
+// the extrusions, or the turns of a spiral wall (a vase printed without
+// markers: one layer per layer height of climb).
+enum class LayerMode : std::uint8_t { Undecided, Markers, Heuristic, Spiral };
 
 class Precision;
 
@@ -95,6 +98,12 @@ class LayerTracker {
   // Without layers every line goes to the sink at once, in the start code
   // (for tools that need no layer: nothing is held back).
   void set_track_layers(bool on) { track_layers_ = on; }
+  // The E mode the file relies on without saying it (e_mode.hpp): set before
+  // the first line; the file's own M82/M83 still wins where it has one.
+  void set_e_mode(bool relative) {
+    state_.relative_e = relative;
+    state_.e_follows_g90 = false;
+  }
   // Records the decimals the input uses per letter (see Precision).
   void set_precision(Precision* precision) { precision_ = precision; }
 
@@ -103,7 +112,7 @@ class LayerTracker {
   // End of input: releases every held line.
   void finish();
 
-  LayerMode mode() const { return mode_; }
+  LayerMode mode() const { return mode_ == LayerMode::Heuristic && spiral_ ? LayerMode::Spiral : mode_; }
   int layer_count() const { return layers_; }
   // The state after the last line pushed (not necessarily emitted yet).
   const MachineState& state() const { return state_; }
@@ -158,7 +167,8 @@ class LayerTracker {
   void emit_tail(std::size_t from, std::size_t to);
   void emit(const View& v);
   void emit_item(const Item& item, const std::string& arena, const MachineState& before);
-  void begin_layer(LayerInfo info, std::size_t boundary);
+  void begin_layer(LayerInfo info, std::size_t boundary, const View& extrusion);
+  bool spiral_turn(const View& extrusion);
   const MachineState& tail_state_before(std::size_t index) const;
   int feature_id(std::string_view name);
 
@@ -176,6 +186,11 @@ class LayerTracker {
   int layers_ = 0;
   Region region_ = Region::StartCode;
   double layer_z_ = 0;
+  double layer_height_ = 0;   // of the current layer
+  bool skip_first_z_ = false; // unmarked: the first extrusion height was a purge above layer 1
+  double first_z_ = 0;
+  bool spiral_ = false;       // extrusions climb: a spiral wall, one layer per turn
+  double turn_top_ = 0;       // the Z at which the current turn ends
   bool finished_ = false;
   bool track_layers_ = true;
   Precision* precision_ = nullptr;

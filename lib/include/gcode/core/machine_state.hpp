@@ -69,6 +69,13 @@ struct MachineState {
   double feedrate = 0;        // mm/min, modal F
   bool relative_xyz = false;  // G91
   bool relative_e = false;    // M83, or G91 (Marlin couples E to G90/G91)
+  // Whether the file itself has said M82 or M83. Blocks a tool adds never
+  // write an E mode a file did not set: they work in the mode in force.
+  bool e_mode_set = false;
+  // Marlin's G90/G91 also set the E mode. Off while the E mode comes from
+  // outside the file (a printer's start macro, --e-mode): on Klipper and the
+  // like G90 leaves E alone, and a file that never says M83 relies on that.
+  bool e_follows_g90 = true;
   bool inches = false;        // G20
   bool firmware_retracted = false;  // G10 without G11 yet
   bool uses_firmware_retraction = false;  // a bare G10 or G11 has been seen

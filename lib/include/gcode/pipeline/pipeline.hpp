@@ -40,6 +40,12 @@ class Pipeline : private LayerSink {
   Pipeline(const Pipeline&) = delete;
   Pipeline& operator=(const Pipeline&) = delete;
 
+  // The E mode of a file that never sets it (see e_mode.hpp); before the first line.
+  void set_e_mode(bool relative) { tracker_.set_e_mode(relative); }
+  // Buffers at least `bytes` of input from `fd` (less at its end) without
+  // consuming it, and returns what is buffered; run() starts with it.
+  std::string_view read_ahead(int fd, std::size_t bytes);
+
   // Appends a stage (not owned; it must outlive the pipeline's run).
   void add(Stage& stage);
 
@@ -68,6 +74,8 @@ class Pipeline : private LayerSink {
   const LayerTracker& tracker() const { return tracker_; }
   const std::string& feature_name(int id) const { return tracker_.feature_name(id); }
   bool finished() const { return finished_; }
+  // Input read and not yet processed (what read_header/read_ahead buffered).
+  std::string_view buffered() const { return splitter_.pending(); }
 
  private:
   void on_layer(const LayerInfo& layer, const MachineState& before) override;

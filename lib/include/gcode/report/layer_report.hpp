@@ -5,7 +5,7 @@
 // {
 //   "schema": "gc-layers/1",
 //   "file": "<name>",
-//   "layer_mode": "markers" | "heuristic",
+//   "layer_mode": "markers" | "heuristic" | "spiral" (a vase without markers: one layer per turn),
 //   "start_code": Region, "end_code": Region | null,
 //   "layers": [ Layer ... ],
 //   "summary": { "layers": n, "filament_mm": f (extruded in layers, as slicers count it),
