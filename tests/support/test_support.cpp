@@ -89,6 +89,18 @@ RunResult run(const std::string& command_line, std::string_view input) {
   return r;
 }
 
+std::set<std::string> long_options(std::string text) {
+  for (std::size_t p; (p = text.find("\\-")) != std::string::npos;) text.erase(p, 1);
+  std::set<std::string> names;
+  for (std::size_t p = 0; (p = text.find("--", p)) != std::string::npos;) {
+    std::size_t e = p + 2;
+    while (e < text.size() && ((text[e] >= 'a' && text[e] <= 'z') || (text[e] == '-' && e > p + 2))) ++e;
+    if (e > p + 3) names.insert(text.substr(p, e - p));
+    p = e;
+  }
+  return names;
+}
+
 std::vector<std::string> split_lines(std::string_view text) {
   std::vector<std::string> lines;
   gcode::MemoryLineSplitter split(text);

@@ -2,6 +2,7 @@
 // Helpers shared by the tests: fixture paths, reading files, running a built
 // tool, and replaying G-code through the library into plain records that
 // tests compare (the "independent checker" of the tool tests).
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -30,6 +31,10 @@ RunResult run(const std::string& command_line, std::string_view input = {});
 std::string quote(std::string_view arg);
 // The shell command line that runs a built tool with `args` (already quoted).
 std::string tool_command(std::string_view tool, const std::string& args);
+
+// Every long option ("--name") in a --help text or a man page (roff writes a
+// dash as "\-"), for checking that the two name the same options.
+std::set<std::string> long_options(std::string text);
 
 // Splits text into lines the way the library does (endings kept).
 std::vector<std::string> split_lines(std::string_view text);
