@@ -84,6 +84,7 @@ int join(const Options& o, gcode::Diagnostics& diag) {
   ro.note_prefix = "gc-relayer: ";
   gcode::RelayerPlan plan(next, ro, &diag);
   gcode::SpliceStage splice(plan, run.pipeline().precision(), seam, &diag);
+  splice.set_downstream_reads(false);  // the writer is all that follows
   run.add(splice);
   // Once the new file has taken over, the rest of the old one is not read.
   run.stop_when([&] { return splice.left(); });

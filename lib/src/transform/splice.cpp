@@ -291,6 +291,12 @@ bool BlockStream::pump(SpliceSink& sink) {
                               target.state.relative_e ? "relative" : "absolute",
                               seam_.relative_e ? "relative" : "absolute",
                               seam_.relative_e ? "relative amounts" : "absolute coordinates"));
+    copying_ = copy_to_end_ && block_.through_end && block_.z_shift.is_zero() && block_.extrusion_scale == 1 &&
+               !seam_.e_mode_differs;
+    if (copying_) {
+      copy_lines_ = std::make_unique<LineSplitter>(kBlockRead);
+      return true;
+    }
     int prelude_lines = 0;
     std::string prelude = prelude_for(block_.start.state, prelude_lines);
     bridge_ = std::make_unique<Bridge>(*this, prelude_lines, block_.start.retracted);
@@ -299,6 +305,7 @@ bool BlockStream::pump(SpliceSink& sink) {
     bridge_->pipeline().feed(prelude);
     return true;
   }
+  if (copying_) return copy(sink);
   bridge_->set_sink(&sink);
   if (next_ < block_.end) {
     buffer_.resize(kBlockRead);
@@ -317,6 +324,23 @@ bool BlockStream::pump(SpliceSink& sink) {
   bridge_->pipeline().finish();
   finish();
   return false;
+}
+
+bool BlockStream::copy(SpliceSink& sink) {
+  LineSplitter& lines = *copy_lines_;
+  char* room = lines.room();
+  ssize_t n;
+  do {
+    n = ::pread(block_.fd, room, lines.room_size(), static_cast<off_t>(next_));
+  } while (n < 0 && errno == EINTR);
+  if (n < 0) throw std::system_error(errno, std::generic_category(), "cannot read " + block_.name);
+  if (n == 0) lines.end_of_input();
+  next_ += static_cast<std::uint64_t>(n);
+  lines.commit(static_cast<std::size_t>(n));
+  RawLine raw;
+  while (lines.next(raw)) sink.line(raw.text);
+  if (n == 0) done_ = true;
+  return n != 0;
 }
 
 void BlockStream::finish() {
@@ -396,6 +420,7 @@ void SpliceStage::print_blocks(std::vector<SpliceBlock>& blocks, Emitter& out) {
     b.continues = last_fd_ == b.fd && last_end_ == b.begin && last_shift_ == b.z_shift && !last_scaled_ &&
                   b.extrusion_scale == 1;
     BlockStream stream(b, printed_, options_, precision_, diag_);
+    stream.set_copy_to_end(!downstream_reads_);
     stream.run(sink);
     ++blocks_;
     if (!b.continues) ++seams_;

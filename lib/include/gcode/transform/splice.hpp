@@ -37,6 +37,7 @@
 #include "gcode/core/diagnostics.hpp"
 #include "gcode/core/layer_marker.hpp"
 #include "gcode/core/line_builder.hpp"
+#include "gcode/core/line_reader.hpp"
 #include "gcode/core/print_area.hpp"
 #include "gcode/pipeline/stage.hpp"
 #include "gcode/transform/layer_index.hpp"
@@ -129,10 +130,17 @@ class BlockStream {
   const Seam& seam() const { return seam_; }
   // The block's E was rewritten into the printed side's mode.
   bool converted_e() const { return seam_.e_mode_differs; }
+  // For a block that runs to the end of its file and needs no rewriting (no
+  // shift, no scale, the same E mode) when nothing after it reads layers or
+  // states (a filter's writer): its lines are copied as they are, without
+  // parsing and without layer events; `printed` is not updated past the
+  // seam. Call before the first pump().
+  void set_copy_to_end(bool on) { copy_to_end_ = on; }
 
  private:
   class Bridge;
   void finish();
+  bool copy(SpliceSink& sink);
 
   SpliceBlock block_;
   StreamPoint& printed_;
@@ -145,6 +153,9 @@ class BlockStream {
   std::uint64_t next_ = 0;  // the next byte to read
   bool started_ = false;
   bool done_ = false;
+  bool copy_to_end_ = false;
+  bool copying_ = false;  // copy_to_end_ and the block allows it
+  std::unique_ptr<LineSplitter> copy_lines_;
 };
 
 // A main-stream layer as the stage saw it pass (to print it again).
@@ -204,6 +215,10 @@ class SpliceStage : public Stage {
   bool left() const { return left_; }
   // The highest Z printed, for checks after the run.
   double top_z() const;
+  // False when nothing after this stage reads layer events or states (a
+  // filter tool's writer): a file joined for good is then copied to its end
+  // without parsing (BlockStream::set_copy_to_end).
+  void set_downstream_reads(bool on) { downstream_reads_ = on; }
 
  private:
   struct Sink;
@@ -247,6 +262,7 @@ class SpliceStage : public Stage {
   std::uint64_t last_end_ = 0;
   Fixed last_shift_;
   bool last_scaled_ = false;
+  bool downstream_reads_ = true;
   LineBuilder builder_;
 };
 
