@@ -6,7 +6,6 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
-#include <map>
 
 #include "splice_check.hpp"
 #include "test_support.hpp"
@@ -17,48 +16,17 @@ using gctest::run;
 
 namespace {
 
-struct Source {
-  std::string path;
-  std::string text;
-  std::vector<gctest::Replayed> lines;
-  gctest::LayerLines layers;
-};
+using Source = gctest::PairFile;
 
-const Source& pair(const std::string& name) {
-  static std::map<std::string, std::unique_ptr<Source>> cache;
-  auto& s = cache[name];
-  if (!s) {
-    s = std::make_unique<Source>();
-    s->path = gctest::fixture_path("pairs/" + name);
-    s->text = read_file(s->path);
-    s->lines = gctest::replay_lines(s->text);
-    s->layers = gctest::layer_lines(s->text);
-  }
-  return *s;
-}
-
-// The first layer of `s` above `z`.
-int first_above(const Source& s, double z) {
-  for (int k = 1; k <= s.layers.count(); ++k)
-    if (s.layers.z[static_cast<std::size_t>(k - 1)] > z + 1e-6) return k;
-  return 0;
-}
-
+const Source& pair(const std::string& name) { return gctest::pair_file(name); }
+int first_above(const Source& s, double z) { return s.first_above(z); }
 gctest::SpliceSegment part(const std::string& name, int first_layer, int end_layer, double shift = 0,
                            double scale = 1) {
-  const Source& s = pair(name);
-  gctest::SpliceSegment seg;
-  seg.name = name + " layers " + std::to_string(first_layer) + "-" + std::to_string(end_layer - 1);
-  seg.source = &s.lines;
-  seg.first = first_layer == 0 ? 0 : s.layers.start(first_layer);
-  seg.last = end_layer > s.layers.count() + 1 ? s.lines.size() : s.layers.start(end_layer);
-  seg.z_shift = shift;
-  seg.scale = scale;
-  return seg;
+  return gctest::pair_part(name, first_layer, end_layer, shift, scale);
 }
 // To the end of the file, end code included.
 gctest::SpliceSegment rest(const std::string& name, int first_layer) {
-  return part(name, first_layer, 1 << 20);
+  return gctest::pair_part(name, first_layer, gctest::kToEnd);
 }
 
 std::string relayer(const std::string& args) { return gctest::tool_command("gc-relayer", args); }
@@ -184,7 +152,7 @@ TEST_CASE("gc-relayer refuses what it cannot join", "[gc-relayer][errors]") {
   CHECK(beyond.err.find("--at-layer 80: the input has 20 layers") != std::string::npos);
   auto other = join(cura, "prusa_block_0.2_infill60_220c_k006.gcode", "--at-z 2");
   CHECK(other.status == 1);
-  CHECK(other.err.find("does not lie where the input printed") != std::string::npos);
+  CHECK(other.err.find("does not lie where the input prints") != std::string::npos);
   auto missing = run(relayer("--at-z 2 /no/such.gcode"), pair(cura).text);
   CHECK(missing.status == 1);
   const std::vector<std::string> usage = {"",

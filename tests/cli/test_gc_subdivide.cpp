@@ -222,24 +222,11 @@ TEST_CASE("usage errors exit 2 with a message", "[gc-subdivide][usage]") {
   CHECK(run(gctest::tool_command("gc-subdivide", "--version")).out.rfind("gc-subdivide ", 0) == 0);
 }
 
-// Every "--name" in a text (roff writes a dash as "\-").
-static std::set<std::string> long_options(std::string text) {
-  for (std::size_t p; (p = text.find("\\-")) != std::string::npos;) text.erase(p, 1);
-  std::set<std::string> names;
-  for (std::size_t p = 0; (p = text.find("--", p)) != std::string::npos;) {
-    std::size_t e = p + 2;
-    while (e < text.size() && ((text[e] >= 'a' && text[e] <= 'z') || (text[e] == '-' && e > p + 2))) ++e;
-    if (e > p + 3) names.insert(text.substr(p, e - p));
-    p = e;
-  }
-  return names;
-}
-
 TEST_CASE("help and the man page name the same options", "[gc-subdivide][docs]") {
   auto help = run(gctest::tool_command("gc-subdivide", "--help"));
   REQUIRE(help.status == 0);
   std::string man = read_file(std::string(GC_FIXTURES_DIR) + "/../../man/gc-subdivide.1");
-  std::set<std::string> in_help = long_options(help.out), in_man = long_options(man);
+  std::set<std::string> in_help = gctest::long_options(help.out), in_man = gctest::long_options(man);
   CHECK(in_help == in_man);
   CHECK(in_help.count("--latency") == 1);
   CHECK(in_help.count("--no-travel") == 1);

@@ -6,7 +6,6 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
-#include <map>
 
 #include "splice_check.hpp"
 #include "test_support.hpp"
@@ -17,47 +16,12 @@ using gctest::run;
 
 namespace {
 
-struct Source {
-  std::string path;
-  std::string text;
-  std::vector<gctest::Replayed> lines;
-  gctest::LayerLines layers;
-  double top = 0;  // the highest Z extruded at
-};
-
-const Source& pair(const std::string& name) {
-  static std::map<std::string, std::unique_ptr<Source>> cache;
-  auto& s = cache[name];
-  if (!s) {
-    s = std::make_unique<Source>();
-    s->path = gctest::fixture_path("pairs/" + name);
-    s->text = read_file(s->path);
-    s->lines = gctest::replay_lines(s->text);
-    s->layers = gctest::layer_lines(s->text);
-    for (const auto& l : s->lines)
-      if (l.move.extruding) s->top = std::max(s->top, l.move.end[gcode::kZ]);
-  }
-  return *s;
-}
-
-// Layers [first, end) of a pair file (first 0: from its first line; end past
-// the last layer: to its end, end code included).
+const gctest::PairFile& pair(const std::string& name) { return gctest::pair_file(name); }
 gctest::SpliceSegment part(const std::string& name, int first, int end, double shift = 0, double scale = 1) {
-  const Source& s = pair(name);
-  gctest::SpliceSegment seg;
-  seg.name = name + " layers " + std::to_string(first) + "-" + std::to_string(end - 1);
-  seg.source = &s.lines;
-  seg.first = first == 0 ? 0 : s.layers.start(first);
-  seg.last = end > s.layers.count() + 1 ? s.lines.size() : s.layers.start(end);
-  seg.z_shift = shift;
-  seg.scale = scale;
-  return seg;
+  return gctest::pair_part(name, first, end, shift, scale);
 }
-constexpr int kEnd = 1 << 20;
-
-double height(const std::string& name, int layer) {
-  return pair(name).layers.height[static_cast<std::size_t>(layer - 1)];
-}
+constexpr int kEnd = gctest::kToEnd;
+double height(const std::string& name, int layer) { return pair(name).height(layer); }
 
 std::string swap(const std::string& args) { return gctest::tool_command("gc-swap-layer", args); }
 

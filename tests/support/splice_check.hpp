@@ -20,6 +20,8 @@
 // It knows nothing of how the tools build seams: only the printer's view.
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -31,6 +33,7 @@
 #include "gcode/core/line_reader.hpp"
 #include "gcode/core/machine_state.hpp"
 #include "gcode/transform/pause_sequence.hpp"
+#include "test_support.hpp"
 
 namespace gctest {
 
@@ -113,6 +116,56 @@ struct SpliceSegment {
   bool e_converted = false;  // written in the other E mode
   double seam_extra = 0;     // filament the seam before it pushes beyond its retraction (a purge)
 };
+
+// A file of tests/fixtures/pairs, read, replayed and split into layers once.
+struct PairFile {
+  std::string path;
+  std::string text;
+  std::vector<Replayed> lines;
+  LayerLines layers;
+  double top = 0;  // the highest Z extruded at
+
+  double z(int layer) const { return layers.z[static_cast<std::size_t>(layer - 1)]; }
+  double height(int layer) const { return layers.height[static_cast<std::size_t>(layer - 1)]; }
+  // The first layer above `z` (0: none).
+  int first_above(double at) const {
+    for (int k = 1; k <= layers.count(); ++k)
+      if (z(k) > at + 1e-6) return k;
+    return 0;
+  }
+};
+
+inline const PairFile& pair_file(const std::string& name) {
+  static std::map<std::string, std::unique_ptr<PairFile>> cache;
+  auto& f = cache[name];
+  if (!f) {
+    f = std::make_unique<PairFile>();
+    f->path = fixture_path("pairs/" + name);
+    f->text = read_file(f->path);
+    f->lines = replay_lines(f->text);
+    f->layers = layer_lines(f->text);
+    for (const Replayed& l : f->lines)
+      if (l.move.extruding) f->top = std::max(f->top, l.move.end[gcode::kZ]);
+  }
+  return *f;
+}
+
+// Past the last layer: a part to the end of its file, end code included.
+inline constexpr int kToEnd = 1 << 20;
+
+// Layers [first, end) of a pair file (first 0: from its first line; end one past
+// the last layer: up to the end code).
+inline SpliceSegment pair_part(const std::string& name, int first, int end, double shift = 0, double scale = 1) {
+  const PairFile& f = pair_file(name);
+  SpliceSegment s;
+  s.name = name + " layers " + std::to_string(first) + "-" + std::to_string(end - 1);
+  s.source = &f.lines;
+  s.first = first == 0 ? 0 : f.layers.start(first);
+  s.last = end > f.layers.count() + 1 ? f.lines.size() : f.layers.start(end);
+  s.z_shift = shift;
+  s.scale = scale;
+  return s;
+}
 
 struct SeamReport {
   std::size_t first = 0, last = 0;  // output lines [first, last)

@@ -18,6 +18,20 @@ std::string read_file(const std::string& path);
 void write_file(const std::string& path, std::string_view data);
 // All fixture file names (*.gcode) in tests/fixtures.
 std::vector<std::string> fixture_names();
+// A file opened for reading, closed at the end of the scope (for pieces that
+// take a descriptor).
+class OpenedFile {
+ public:
+  explicit OpenedFile(const std::string& path);
+  ~OpenedFile();
+  OpenedFile(const OpenedFile&) = delete;
+  OpenedFile& operator=(const OpenedFile&) = delete;
+  int fd() const { return fd_; }
+
+ private:
+  int fd_;
+};
+
 // A fresh empty directory under the build's temp area.
 std::string temp_dir();
 

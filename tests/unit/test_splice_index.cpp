@@ -3,7 +3,6 @@
 // (LayerTable) and a replay of the file.
 #include <catch2/catch.hpp>
 
-#include <fcntl.h>
 #include <unistd.h>
 
 #include <string>
@@ -13,16 +12,6 @@
 #include "gcode/report/layer_table.hpp"
 #include "gcode/transform/layer_index.hpp"
 #include "test_support.hpp"
-
-namespace {
-
-struct OpenFile {
-  explicit OpenFile(const std::string& path) : fd(::open(path.c_str(), O_RDONLY)) { REQUIRE(fd >= 0); }
-  ~OpenFile() { ::close(fd); }
-  int fd;
-};
-
-}  // namespace
 
 TEST_CASE("splice index: every layer's bytes and start state are what gc-layers and a replay say",
           "[splice][index]") {
@@ -37,8 +26,8 @@ TEST_CASE("splice index: every layer's bytes and start state are what gc-layers 
     pipeline.add(table);
     pipeline.run_text(text);
 
-    OpenFile f(path);
-    gcode::LayerIndex index(f.fd, name, markers);
+    gctest::OpenedFile f(path);
+    gcode::LayerIndex index(f.fd(), name, markers);
     index.read_all();
     REQUIRE(index.complete());
     REQUIRE(index.layers() == static_cast<int>(table.layers().size()));
@@ -58,15 +47,15 @@ TEST_CASE("splice index: every layer's bytes and start state are what gc-layers 
                                           : text.size()));
     CHECK(index.size() == text.size());
     // The descriptor's own offset is never moved (pread).
-    CHECK(::lseek(f.fd, 0, SEEK_CUR) == 0);
+    CHECK(::lseek(f.fd(), 0, SEEK_CUR) == 0);
   }
 }
 
 TEST_CASE("splice index: reads only as far as asked", "[splice][index]") {
   std::string path = gctest::fixture_path("cura_pegs_0.2_rel_fwretract.gcode");  // 1.3 MB
-  OpenFile f(path);
+  gctest::OpenedFile f(path);
   gcode::LayerMarkers markers;
-  gcode::LayerIndex index(f.fd, "x", markers);
+  gcode::LayerIndex index(f.fd(), "x", markers);
   REQUIRE(index.reach(3));
   CHECK(index.layers() >= 3);
   CHECK_FALSE(index.complete());
@@ -80,9 +69,9 @@ TEST_CASE("splice index: reads only as far as asked", "[splice][index]") {
 
 TEST_CASE("splice index: carried settings and retraction at each layer's start", "[splice][index]") {
   std::string path = gctest::fixture_path("pairs/prusa_block_0.2_infill60_220c_k006.gcode");
-  OpenFile f(path);
+  gctest::OpenedFile f(path);
   gcode::LayerMarkers markers;
-  gcode::LayerIndex index(f.fd, "x", markers);
+  gcode::LayerIndex index(f.fd(), "x", markers);
   index.read_all();
   using Kind = gcode::CarriedSettings::Kind;
   gcode::StreamPoint first = index.point(1);

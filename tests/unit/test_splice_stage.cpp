@@ -3,9 +3,6 @@
 // planned changes nothing; blocks come with their layer events; CRLF stays.
 #include <catch2/catch.hpp>
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <string>
 #include <vector>
 
@@ -45,11 +42,6 @@ std::string rewritten(const std::string& text, gcode::Fixed shift, double scale,
 
 gcode::Fixed dec(std::int64_t mantissa, int decimals) { return gcode::Fixed::from_decimal(mantissa, decimals); }
 
-struct OpenFile {
-  explicit OpenFile(const std::string& path) : fd(::open(path.c_str(), O_RDONLY)) { REQUIRE(fd >= 0); }
-  ~OpenFile() { ::close(fd); }
-  int fd;
-};
 
 // A plan from a table: per main layer, keep or not and the blocks first.
 struct TablePlan : gcode::SplicePlan {
@@ -107,9 +99,9 @@ TEST_CASE("splice rewrite: extrusion scaled with the rounding carried, retractio
 
 TEST_CASE("splice block stream: pull style, a bounded piece per pump", "[splice][block]") {
   std::string path = gctest::fixture_path("pairs/cura_block_0.1_infill20.gcode");
-  OpenFile f(path);
+  gctest::OpenedFile f(path);
   gcode::LayerMarkers markers;
-  gcode::LayerIndex index(f.fd, "block", markers);
+  gcode::LayerIndex index(f.fd(), "block", markers);
   index.read_all();
   gcode::SpliceBlock b = gcode::layer_index_block(index, 5, index.layers(), true);
   gcode::StreamPoint printed = index.point(5);  // the printer stands where the block starts
@@ -155,7 +147,7 @@ TEST_CASE("splice stage: a plan that changes nothing gives the input byte for by
 TEST_CASE("splice stage: a layer left out and printed again from the input itself", "[splice][stage]") {
   std::string path = gctest::fixture_path("pairs/prusa_block_0.2_infill20.gcode");
   std::string text = gctest::read_file(path);
-  OpenFile f(path);
+  gctest::OpenedFile f(path);
   gcode::LayerMarkers markers;
   TablePlan plan;
   // Layer 3 left out; at layer 6, layer 5 printed once more in its place 0.2 up.
@@ -169,7 +161,7 @@ TEST_CASE("splice stage: a layer left out and printed again from the input itsel
     if (info.index == 6) {
       const gcode::PassedLayer& p = *c.previous;
       gcode::SpliceBlock b;
-      b.fd = f.fd;
+      b.fd = f.fd();
       b.name = "self";
       b.markers = &markers;
       b.begin = p.info.offset;

@@ -44,7 +44,8 @@ void say(const Options& o, const std::vector<std::string>& lines) {
 int list_candidates(const Options& o) {
   gcode::InputFile file(o.io.file);
   file.make_seekable();
-  gcode::LayerIndex index(file.fd(), file.name(), o.io.markers());
+  const gcode::LayerMarkers markers = o.io.markers();  // the index keeps a reference
+  gcode::LayerIndex index(file.fd(), file.name(), markers);
   gcode::Candidates c = gcode::layer_candidates(index, *o.candidates_z);
   if (c.below == 0 && c.above == 0) throw InputError(file.name() + " has no layers");
   const double z = *o.candidates_z;

@@ -15,8 +15,6 @@ namespace {
 
 // Heights of layers that are "the same Z" in two slicings of one model.
 constexpr double kSameZ = 0.005;
-// Two slicings of one part must lie within this of each other (mm, centres).
-constexpr double kPlacement = 2.0;
 
 std::string mm(double v) {
   char b[kMaxNumberChars];
@@ -192,15 +190,8 @@ Fixed LayerEditPlan::z_of(double z) const { return Fixed::from_double(z).rounded
 void LayerEditPlan::check_placement(const SpliceFile& file, int below, const SpliceContext& context) {
   if (std::find(checked_.begin(), checked_.end(), file.name) != checked_.end()) return;
   checked_.push_back(file.name);
-  Box2 theirs = file.index->extent(1, below);
-  if (context.extent.empty() || theirs.empty()) return;
-  Point2 a = context.extent.centre(), b = theirs.centre();
-  double d = std::hypot(a.x - b.x, a.y - b.y);
-  if (d > kPlacement)
-    throw std::runtime_error(fmt::format(
-        "{} does not lie where the input prints: its part is centred at X{} Y{}, the input's at X{} Y{} ({} mm "
-        "apart); slice it for the same printer and placement",
-        file.name, mm(b.x), mm(b.y), mm(a.x), mm(a.y), mm(d)));
+  std::string error = placement_difference(context.extent, file.index->extent(1, below), file.name);
+  if (!error.empty()) throw std::runtime_error(error);
 }
 
 void LayerEditPlan::after_layer(const SpliceContext& context, LayerAction& action) {

@@ -13,9 +13,6 @@ namespace gcode {
 
 namespace {
 
-// Two slicings of one part must lie within this of each other (mm, centres).
-constexpr double kPlacement = 2.0;
-
 std::string mm(double v) {
   char b[kMaxNumberChars];
   return std::string(number_text(v, 4, b));
@@ -134,16 +131,8 @@ LayerAction RelayerPlan::join(const SpliceContext& context) {
   Join j = choose_join(next_, printed, options_.z_decimals);
   const int first_new = !j.covered.empty() ? j.covered.front() : j.first;
   // The new file's part below the join must lie where the old one printed.
-  Box2 theirs = next_.extent(1, first_new - 1);
-  if (!context.extent.empty() && !theirs.empty()) {
-    Point2 a = context.extent.centre(), b = theirs.centre();
-    double d = std::hypot(a.x - b.x, a.y - b.y);
-    if (d > kPlacement)
-      throw std::runtime_error(fmt::format(
-          "{} does not lie where the input printed: its part is centred at X{} Y{}, the printed one at X{} Y{} ({} "
-          "mm apart); slice it for the same printer and placement",
-          next_.name(), mm(b.x), mm(b.y), mm(a.x), mm(a.y), mm(d)));
-  }
+  std::string error = placement_difference(context.extent, next_.extent(1, first_new - 1), next_.name());
+  if (!error.empty()) throw std::runtime_error(error);
   LayerAction a;
   a.leave = true;
   a.shift = context.shift;

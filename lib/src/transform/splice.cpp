@@ -164,6 +164,20 @@ std::string printer_difference(const PrintArea& input, const PrintArea& other, c
                      number_text(a.depth(), 1, d2));
 }
 
+std::string placement_difference(const Box2& printed, const Box2& theirs, const std::string& their_name) {
+  constexpr double kPlacement = 2.0;
+  if (printed.empty() || theirs.empty()) return {};
+  Point2 a = printed.centre(), b = theirs.centre();
+  double d = std::hypot(a.x - b.x, a.y - b.y);
+  if (d <= kPlacement) return {};
+  char bx[kMaxNumberChars], by[kMaxNumberChars], ax[kMaxNumberChars], ay[kMaxNumberChars], dd[kMaxNumberChars];
+  return fmt::format(
+      "{} does not lie where the input prints: its part is centred at X{} Y{}, the input's at X{} Y{} ({} mm "
+      "apart); slice it for the same printer and placement",
+      their_name, number_text(b.x, 3, bx), number_text(b.y, 3, by), number_text(a.x, 3, ax), number_text(a.y, 3, ay),
+      number_text(d, 1, dd));
+}
+
 SpliceBlock layer_index_block(const LayerIndex& index, int first, int last, bool through_end) {
   const IndexedLayer& l = index.layer(first);
   SpliceBlock b;
@@ -419,9 +433,12 @@ void SpliceStage::print_blocks(std::vector<SpliceBlock>& blocks, Emitter& out) {
   for (SpliceBlock& b : blocks) {
     b.continues = last_fd_ == b.fd && last_end_ == b.begin && last_shift_ == b.z_shift && !last_scaled_ &&
                   b.extrusion_scale == 1;
-    BlockStream stream(b, printed_, options_, precision_, diag_);
+    // A file in the other E mode is said once, not at every block of it.
+    bool told = std::find(told_.begin(), told_.end(), b.name) != told_.end();
+    BlockStream stream(b, printed_, options_, precision_, told ? nullptr : diag_);
     stream.set_copy_to_end(!downstream_reads_);
     stream.run(sink);
+    if (stream.converted_e() && !told) told_.push_back(b.name);
     ++blocks_;
     if (!b.continues) ++seams_;
     last_fd_ = b.fd;

@@ -38,7 +38,7 @@ struct IndexedLayer {
 class LayerIndex {
  public:
   // `fd` is a regular file (or anything pread works on); not owned.
-  // `name` is for messages.
+  // `name` is for messages; `markers` must outlive the index.
   LayerIndex(int fd, std::string name, const LayerMarkers& markers);
   ~LayerIndex();
   LayerIndex(const LayerIndex&) = delete;

@@ -69,6 +69,13 @@ struct SpliceBlock {
 // (the bed), as a warning text; empty when nothing is known to differ.
 std::string printer_difference(const PrintArea& input, const PrintArea& other, const std::string& other_name);
 
+// Whether another slicing of the part lies where the input prints: the
+// centres of the two XY extents (what was printed, what the other file
+// prints below the join) more than 2 mm apart means another printer or
+// placement. Returns the error text, empty when they agree or either extent
+// is empty.
+std::string placement_difference(const Box2& printed, const Box2& theirs, const std::string& their_name);
+
 // Layers first..last of an indexed file (through_end: first to the end of
 // the file, end code included). The index must have reached them.
 SpliceBlock layer_index_block(const LayerIndex& index, int first, int last, bool through_end = false);
@@ -213,6 +220,10 @@ class SpliceStage : public Stage {
   int layers_out() const { return layers_out_; }
   // The main stream was left for good: nothing more of it is needed.
   bool left() const { return left_; }
+  // The printed side: where the output stands once the main stream was left
+  // (or after the last block). A caller that paces a block itself (gc-send)
+  // lets its plan leave without blocks and hands this to a BlockStream.
+  StreamPoint& printed() { return printed_; }
   // The highest Z printed, for checks after the run.
   double top_z() const;
   // False when nothing after this stage reads layer events or states (a
@@ -263,6 +274,7 @@ class SpliceStage : public Stage {
   Fixed last_shift_;
   bool last_scaled_ = false;
   bool downstream_reads_ = true;
+  std::vector<std::string> told_;  // files whose E mode differs, warned about
   LineBuilder builder_;
 };
 
