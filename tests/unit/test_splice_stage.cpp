@@ -216,3 +216,22 @@ TEST_CASE("splice stage: lines it writes get the input's CRLF", "[splice][stage]
   CHECK(stage.seams() == 1);
   for (const std::string& l : gctest::split_lines(out)) REQUIRE(l.substr(l.size() - 2) == "\r\n");
 }
+
+TEST_CASE("splice printers: another bed is said, a part elsewhere is refused", "[splice][stage]") {
+  gcode::PrintArea input, other;
+  input.has_bed = other.has_bed = true;
+  input.bed = other.bed = gcode::Box2{0, 0, 220, 220};
+  CHECK(gcode::printer_difference(input, other, "b.gcode").empty());
+  other.bed = gcode::Box2{0, 0, 250, 210};
+  CHECK(gcode::printer_difference(input, other, "b.gcode") ==
+        "b.gcode was sliced for a 250x210 mm bed, the input for 220x220 mm: its moves are used as they are");
+  other.has_bed = false;  // nothing known: nothing said
+  CHECK(gcode::printer_difference(input, other, "b.gcode").empty());
+
+  const gcode::Box2 printed{94, 94, 126, 126};
+  CHECK(gcode::placement_difference(printed, gcode::Box2{95, 95, 127, 127}, "b.gcode").empty());  // 1.4 mm
+  CHECK(gcode::placement_difference(printed, gcode::Box2{109, 84, 141, 116}, "b.gcode").find(
+            "b.gcode does not lie where the input prints: its part is centred at X125 Y100, the input's at X110 "
+            "Y110 (18 mm apart)") == 0);
+  CHECK(gcode::placement_difference(gcode::Box2{}, printed, "b.gcode").empty());
+}
