@@ -3,6 +3,7 @@
 #include "gcode/core/output_buffer.hpp"
 #include "gcode/pipeline/writer.hpp"
 
+#include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -103,6 +104,12 @@ RunResult run(const std::string& command_line, std::string_view input) {
   fs::remove_all(dir);
   return r;
 }
+
+OpenedFile::OpenedFile(const std::string& path) : fd_(::open(path.c_str(), O_RDONLY)) {
+  if (fd_ < 0) throw std::runtime_error("cannot open " + path);
+}
+
+OpenedFile::~OpenedFile() { ::close(fd_); }
 
 std::set<std::string> long_options(std::string text) {
   for (std::size_t p; (p = text.find("\\-")) != std::string::npos;) text.erase(p, 1);

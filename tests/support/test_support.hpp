@@ -27,6 +27,20 @@ std::vector<std::string> fixture_names();
 // tests/fixtures/expected/<name without .gcode>.json, or null where a fixture
 // has none. tests/fixtures/sources/README.md says how each was derived.
 nlohmann::json expected_data(std::string_view fixture);
+// A file opened for reading, closed at the end of the scope (for pieces that
+// take a descriptor).
+class OpenedFile {
+ public:
+  explicit OpenedFile(const std::string& path);
+  ~OpenedFile();
+  OpenedFile(const OpenedFile&) = delete;
+  OpenedFile& operator=(const OpenedFile&) = delete;
+  int fd() const { return fd_; }
+
+ private:
+  int fd_;
+};
+
 // A fresh empty directory under the build's temp area.
 std::string temp_dir();
 

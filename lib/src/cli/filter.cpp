@@ -109,7 +109,13 @@ void Filter::write(const std::function<void()>& verify) {
   buffer_.emplace(file_->fd());
   writer_.emplace(*buffer_);
   pipeline_.add(*writer_);
-  pipeline_.run(input_.fd());
+  if (done_) {
+    while (!done_() && pipeline_.read_some(input_.fd())) {
+    }
+    pipeline_.finish();
+  } else {
+    pipeline_.run(input_.fd());
+  }
   buffer_->flush();
   if (verify) verify();
   file_->commit();

@@ -62,6 +62,9 @@ class Filter {
   bool e_mode();
 
   void add(Stage& stage) { pipeline_.add(stage); }
+  // Reads the input only until `done` says the tool needs no more of it
+  // (gc-relayer once the new file has taken over); the rest is not read.
+  void stop_when(std::function<bool()> done) { done_ = std::move(done); }
   // Opens the output, adds the writer after the tool's stages and runs the
   // whole input through; then `verify` (if given) checks what the run found
   // and may throw. The output is committed (-i: renamed over FILE) only if
@@ -81,6 +84,7 @@ class Filter {
   std::optional<OutputFile> file_;
   std::optional<OutputBuffer> buffer_;
   std::optional<GcodeWriter> writer_;
+  std::function<bool()> done_;
 };
 
 // Counts the layers of everything `fd` delivers (no output); `e_relative`:

@@ -1,0 +1,273 @@
+#include "gcode/transform/relayer.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "gcode/core/line_builder.hpp"
+#include "gcode/core/number.hpp"
+
+namespace gcode {
+
+namespace {
+
+std::string mm(double v) {
+  char b[kMaxNumberChars];
+  return std::string(number_text(v, 4, b));
+}
+
+double height_of(const LayerIndex& index, int k) {
+  const LayerInfo& l = index.layer(k).info;
+  if (l.height > 0) return l.height;
+  return k > 1 ? l.z - index.layer(k - 1).info.z : l.z;
+}
+
+std::string list_layers(const std::vector<int>& layers) {
+  std::string s;
+  for (int l : layers) s += (s.empty() ? "" : ", ") + std::to_string(l);
+  return s;
+}
+
+}  // namespace
+
+Join choose_join(LayerIndex& next, double printed_z, int z_decimals, double tolerance) {
+  const int zd = std::max(z_decimals, 3);
+  next.reach_above(printed_z, 2);
+  int k = 0;
+  for (int i = 1; i <= next.layers() && k == 0; ++i)
+    if (next.layer(i).info.z > printed_z + 1e-6) k = i;
+  if (k == 0)
+    throw std::runtime_error(next.layers() == 0
+                                 ? fmt::format("{} has no layers", next.name())
+                                 : fmt::format("{} has no layer above Z {} (its last is at Z {})", next.name(),
+                                               mm(printed_z), mm(next.layer(next.layers()).info.z)));
+  Join join;
+  const Fixed printed = Fixed::from_double(printed_z).rounded(zd);
+  for (;;) {
+    const double z = next.layer(k).info.z;
+    const double h = height_of(next, k);
+    const double r = z - printed_z;
+    if (r < h - tolerance) {
+      // Its bottom lies below what is printed: already covered.
+      if (!next.reach(k + 1)) {
+        // The last layer: print it thinner rather than not at all.
+        join.first = k;
+        join.first_scale = h > 0 ? r / h : 1;
+        return join;
+      }
+      join.covered.push_back(k++);
+      continue;
+    }
+    join.first = k;
+    if (r <= h + tolerance) return join;
+    // A gap under it: the missing height in layers no thicker than its own,
+    // printed with its paths.
+    const double gap = r - h;
+    const int n = std::max(1, static_cast<int>(std::ceil((gap - tolerance) / h)));
+    Fixed below = printed;
+    const Fixed layer_z = Fixed::from_double(z).rounded(zd);
+    for (int i = 1; i <= n; ++i) {
+      Fixed at = (printed + Fixed::from_double(gap * i / n)).rounded(zd);
+      JoinStep step;
+      step.layer = k;
+      step.z_shift = at - layer_z;
+      step.scale = (at - below).to_double() / h;
+      join.fills.push_back(step);
+      below = at;
+    }
+    return join;
+  }
+}
+
+Candidates layer_candidates(LayerIndex& index, double z, double tolerance) {
+  index.reach_above(z + tolerance, 0);
+  Candidates c;
+  for (int i = 1; i <= index.layers(); ++i) {
+    if (index.layer(i).info.z <= z + tolerance) {
+      c.below = i;
+    } else {
+      c.above = i;
+      break;
+    }
+  }
+  return c;
+}
+
+// ---------------------------------------------------------------------------
+
+RelayerPlan::RelayerPlan(LayerIndex& next, Options options, Diagnostics* diag)
+    : next_(next), options_(std::move(options)), diag_(diag) {}
+
+LayerAction RelayerPlan::at_layer(const LayerInfo& info, const SpliceContext& context) {
+  ++layers_seen_;
+  bool keep = options_.at_z ? info.z <= *options_.at_z + 1e-6 : info.index <= options_.at_layer;
+  if (keep) {
+    last_ = info;
+    LayerAction a;
+    a.shift = context.shift;
+    return a;
+  }
+  if (last_.index == 0)
+    throw std::runtime_error(options_.at_z ? fmt::format("--at-z {}: the input's first layer is higher (Z {})",
+                                                         mm(*options_.at_z), mm(info.z))
+                                           : std::string("--at-layer: the input has no such layer"));
+  return join(context);
+}
+
+LayerAction RelayerPlan::at_end_code(const SpliceContext& context) {
+  if (layers_seen_ == 0) throw std::runtime_error("the input has no layers");
+  if (!options_.at_z && options_.at_layer > layers_seen_)
+    throw std::runtime_error(
+        fmt::format("--at-layer {}: the input has {} layers", options_.at_layer, layers_seen_));
+  // Every layer of the input is at or below the height: the new file goes on from its top.
+  return join(context);
+}
+
+LayerAction RelayerPlan::join(const SpliceContext& context) {
+  joined_ = true;
+  const double printed = last_.z + context.shift.to_double();
+  Join j = choose_join(next_, printed, options_.z_decimals);
+  const int first_new = !j.covered.empty() ? j.covered.front() : j.first;
+  // The new file's part below the join must lie where the old one printed.
+  std::string error = placement_difference(context.extent, next_.extent(1, first_new - 1), next_.name());
+  if (!error.empty()) throw std::runtime_error(error);
+  LayerAction a;
+  a.leave = true;
+  a.shift = context.shift;
+  const std::string& np = options_.note_prefix;
+  report_.push_back(fmt::format("the input's layers 1-{} (to Z {}) are kept", last_.index, mm(last_.z)));
+  if (!j.covered.empty())
+    report_.push_back(fmt::format("{} layer{} {} left out: already covered", next_.name(),
+                                  j.covered.size() > 1 ? "s" : "", list_layers(j.covered)));
+  for (const JoinStep& s : j.fills) {
+    SpliceBlock b = layer_index_block(next_, s.layer, s.layer);
+    b.z_shift = s.z_shift;
+    b.extrusion_scale = s.scale;
+    const double at = next_.layer(s.layer).info.z + s.z_shift.to_double();
+    b.note = fmt::format("{}layer {} of {} at Z {}, extrusion x{}: the height missing under its layer {}", np,
+                         s.layer, next_.name(), mm(at), mm(s.scale), s.layer);
+    report_.push_back(fmt::format("{} layer {} printed first at Z {} with its extrusion x{} (the missing {} mm)",
+                                  next_.name(), s.layer, mm(at), mm(s.scale), mm(s.scale * height_of(next_, s.layer))));
+    a.blocks.push_back(std::move(b));
+  }
+  SpliceBlock rest = layer_index_block(next_, j.first, j.first, true);
+  rest.extrusion_scale = j.first_scale;
+  const LayerInfo& f = next_.layer(j.first).info;
+  rest.note = fmt::format("{}{} from its layer {} (Z {}) on, joined onto the input's layer {} (Z {})", np,
+                          next_.name(), j.first, mm(f.z), last_.index, mm(last_.z));
+  report_.push_back(fmt::format("{} goes on from its layer {} (Z {}) to its end", next_.name(), j.first, mm(f.z)));
+  if (j.first_scale != 1)
+    report_.push_back(fmt::format("{} layer {} overlaps the print: its extrusion x{}", next_.name(), j.first,
+                                  mm(j.first_scale)));
+  a.blocks.push_back(std::move(rest));
+  return a;
+}
+
+// ---------------------------------------------------------------------------
+
+ResumePlan::ResumePlan(Options options, Diagnostics* diag) : options_(std::move(options)), diag_(diag) {}
+
+LayerAction ResumePlan::at_layer(const LayerInfo& info, const SpliceContext& context) {
+  LayerAction a;
+  a.shift = context.shift;
+  if (resumed_) return a;
+  if (info.z <= options_.z + kJoinTolerance) {
+    last_skipped_ = info;
+    a.keep = false;
+    return a;
+  }
+  resumed_ = true;
+  first_ = info;
+  a.lead_in = lead_in(info, *context.main);
+  a.printed_top = options_.z;
+  a.note = fmt::format("{}layer {} (Z {}) on", options_.note_prefix, info.index, mm(info.z));
+  report_.push_back(fmt::format("resuming at layer {} (Z {}) on a part measured at Z {}", info.index, mm(info.z),
+                                mm(options_.z)));
+  if (info.z - options_.z > 2 * (info.height > 0 ? info.height : 0.2) + kJoinTolerance && diag_ != nullptr)
+    diag_->warn(fmt::format("layer {} (Z {}) is {} mm above the measured Z {}: check the height", info.index,
+                            mm(info.z), mm(info.z - options_.z), mm(options_.z)));
+  return a;
+}
+
+LayerAction ResumePlan::at_end_code(const SpliceContext& context) {
+  if (!resumed_)
+    throw std::runtime_error(last_skipped_.index == 0
+                                 ? std::string("the file has no layers")
+                                 : fmt::format("nothing to resume: the file's last layer is at Z {}, at or below {}",
+                                               mm(last_skipped_.z), mm(options_.z)));
+  LayerAction a;
+  a.shift = context.shift;
+  return a;
+}
+
+std::vector<std::string> ResumePlan::lead_in(const LayerInfo& info, const StreamPoint& main) const {
+  const Options& o = options_;
+  const int zd = std::max(o.z_decimals, 3), ed = std::max(o.e_decimals, 1);
+  std::vector<std::string> lines;
+  LineBuilder b;
+  lines.push_back(fmt::format("; {}resume at layer {} (Z {}) of a part measured at Z {}", o.note_prefix, info.index,
+                              mm(info.z), mm(o.z)));
+  // Heat first, the bed before the nozzle, and wait: the part stays stuck
+  // and nothing moves cold.
+  using Kind = CarriedSettings::Kind;
+  bool hotend = false;
+  if (const auto* bed = main.settings.find(Kind::Bed, 0)) {
+    b.start("M190").fixed('S', bed->value);
+    lines.emplace_back(b.view());
+  }
+  for (const auto& s : main.settings.all()) {
+    if (s.kind != Kind::Hotend) continue;
+    hotend = true;
+    if (s.text.rfind("G10", 0) == 0) {
+      lines.push_back(s.text);
+      lines.emplace_back("M116");  // RepRapFirmware: wait for the temperatures
+      continue;
+    }
+    b.start("M109");
+    if (s.index != main.state.tool) b.word('T', s.index, 0);
+    b.fixed('S', s.value);
+    lines.emplace_back(b.view());
+  }
+  if (!hotend)
+    throw std::runtime_error(
+        fmt::format("the file sets no nozzle temperature before layer {}: there is nothing to heat to", info.index));
+  // Off the part, then declare where the nozzle is: it stopped at the
+  // measured height and the lift was relative.
+  const Fixed lift = Fixed::from_double(o.lift).rounded(zd);
+  lines.emplace_back("G91");
+  b.start("G1").fixed('Z', lift).word('F', o.z_speed * 60, 0);
+  lines.emplace_back(b.view());
+  lines.emplace_back("G90");
+  b.start("G92").fixed('Z', (Fixed::from_double(o.z).rounded(zd) + lift));
+  lines.emplace_back(b.view());
+  lines.emplace_back("G28 X Y");
+  if (main.e_mode_set) lines.emplace_back(main.state.relative_e ? "M83" : "M82");
+  if (o.purge > 0) {
+    double x = o.purge_x, y = o.purge_y;
+    if (!o.purge_at_given) {
+      if (!o.area.has_bed)
+        throw std::runtime_error("the file does not say how big the bed is: give --purge-at X,Y for the purge");
+      x = o.area.bed.min_x + 5;
+      y = o.area.bed.min_y + 5;
+    }
+    if (o.area.has_print_box && o.area.print_box.contains(x, y))
+      throw std::runtime_error(fmt::format("the purge position X{} Y{} is above the part: give --purge-at X,Y away "
+                                           "from it",
+                                           mm(x), mm(y)));
+    b.start("G1").word('X', x, 3).word('Y', y, 3).word('F', o.travel_speed * 60, 0);
+    lines.emplace_back(b.view());
+    const Fixed amount = Fixed::from_double(o.purge).rounded(ed);
+    if (main.e_mode_set && main.state.relative_e) {
+      b.start("G1").fixed('E', amount).word('F', o.purge_speed * 60, 0);
+    } else {
+      lines.emplace_back("G92 E0");
+      b.start("G1").fixed('E', amount).word('F', o.purge_speed * 60, 0);
+    }
+    lines.emplace_back(b.view());
+  }
+  return lines;
+}
+
+}  // namespace gcode
