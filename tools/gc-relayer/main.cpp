@@ -144,7 +144,7 @@ int main(int argc, char** argv) {
       "      layer above Z 12.3. --list-candidates 12.3 part.gcode shows the layers nearest a measured height.\n"
       "Every travel across a seam goes above everything printed so far.");
   CLI::App& app = tool.app();
-  tool.add_filter_options(o.io, gcode::cli::kOutput | gcode::cli::kVerbosity | gcode::cli::kLayerMarker);
+  tool.add_filter_options(o.io, gcode::cli::kOutput | gcode::cli::kVerbosity | gcode::cli::kLayerMarker | gcode::cli::kEMode);
   app.add_option("FILE", o.io.file,
                  "The re-sliced print (--at-z, --at-layer; the old one comes on standard input), or the print to "
                  "resume")
