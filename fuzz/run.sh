@@ -1,11 +1,15 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang (ASan + UBSan) in build-fuzz and
-# fuzzes the whole pipeline for SECONDS (default 30) from a seed corpus: cuts
-# of every fixture (the start, a layer change, the middle, the end) and edge
-# cases (CRLF, no final newline, NUL bytes, a very long line, a lone CR,
-# packed words, checksums). Exits non-zero on a crash, a leak, a sanitizer
-# report or a failed check; the input that did it is left in
-# build-fuzz/artifacts/.
+# runs each for SECONDS (default 30):
+#  * fuzz_pipeline, the whole streaming pipeline, from a seed corpus: cuts of
+#    every fixture (the start, a layer change, the middle, the end) and edge
+#    cases (CRLF, no final newline, NUL bytes, a very long line, a lone CR,
+#    packed words, checksums);
+#  * fuzz_sender, the printer-reply parser and the sender's state machine,
+#    from scripted printer sessions (oks, resends in window and ADVANCED_OK
+#    flow, lost oks, busy, heating reports, junk).
+# Exits non-zero on a crash, a leak, a sanitizer report or a failed check; the
+# input that did it is left in build-fuzz/artifacts/.
 #
 #   fuzz/run.sh [SECONDS]
 set -euo pipefail
@@ -14,6 +18,8 @@ seconds=${1:-30}
 build=$root/build-fuzz
 seeds=$root/fuzz/corpus-run/seeds
 work=$root/fuzz/corpus-run/work
+sender_seeds=$root/fuzz/corpus-run/sender-seeds
+sender_work=$root/fuzz/corpus-run/sender-work
 
 if ! command -v clang++ >/dev/null; then
   echo "fuzz: clang++ not found (scripts/install-deps.sh installs it)" >&2
@@ -21,11 +27,11 @@ if ! command -v clang++ >/dev/null; then
 fi
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGCODE_FUZZ=ON \
   -DGCODE_WERROR=ON -DGCODE_TESTS=OFF -DGCODE_BENCH=OFF >/dev/null
-cmake --build "$build" -j"$(nproc)" --target fuzz_pipeline >/dev/null
+cmake --build "$build" -j"$(nproc)" --target fuzz_pipeline fuzz_sender >/dev/null
 
 # Seeds: rebuilt every run so they follow the fixtures.
-rm -rf "$seeds"
-mkdir -p "$seeds" "$work" "$build/artifacts"
+rm -rf "$seeds" "$sender_seeds"
+mkdir -p "$seeds" "$work" "$sender_seeds" "$sender_work" "$build/artifacts"
 for f in "$root"/tests/fixtures/*.gcode; do
   name=$(basename "$f" .gcode)
   size=$(stat -c %s "$f")
@@ -46,15 +52,39 @@ printf 'G1 X1\rY2\r\r\nG1 X2 E1\r\r\n\r\n\n' >"$seeds/lone-cr"
 printf 'g1x10y5e.5\nG1X-.2Y+3E1e2\nN12 G1 X1 E2*71\nG91\nG1 E-1\nG90\nM83\nG92 E0\nG20\nG1 X1 E.1\nG21\nG2 X10 Y0 I5 J0 E3\nG3 X0 Y0 R5 E4\nG10\nG11\nT1\nM104 S200 T1\n(comment) G1 X5 (inline) E5\n' >"$seeds/packed-and-modes"
 printf ';LAYER:0\nG0 Z0.2\nG1 X1 E1\n;LAYER:1\n;LAYER:2\nG0 Z0.6\nG1 X2 E2\n; layer 3, Z = 0.8\nG1 Z0.8\nG1 X3 E3\n; CHANGE_LAYER\n; Z_HEIGHT: 1.0\nG1 Z1\nG1 X4 E4\n' >"$seeds/markers"
 
-echo "fuzz: fuzz_pipeline for ${seconds}s from $(ls "$seeds" | wc -l) seeds" >&2
-cd "$build/artifacts"
-# Seeds first, then the corpus the fuzzer grows (kept between runs, gitignored).
-"$build/bin/fuzz_pipeline" -max_total_time="$seconds" -max_len=65536 -timeout=20 -rss_limit_mb=2048 \
-  -print_final_stats=1 -artifact_prefix="$build/artifacts/" "$work" "$seeds" 2>"$build/fuzz.log" || {
-  status=$?
-  tail -n 60 "$build/fuzz.log" >&2
-  echo "fuzz: FAILED (exit $status); reproduce with $build/bin/fuzz_pipeline $build/artifacts/<crash-file>" >&2
-  exit 1
+# Sender sessions (see fuzz/fuzz_sender.cpp): 9 bytes of configuration
+# (flow, queue, RX buffer, line limit, flags, timeout, rounds, commands,
+# kinds), then events: \006\000\000 an "ok", \006\007\00N "Resend:" for a line
+# N-1 back from the newest, \006\006\000\020\003 "ok N.. P16 B3", \001\000 the
+# timer, \006\012\000 busy, \006\014\000 a heating report.
+repeat() { local i; for ((i = 0; i < $2; i++)); do printf '%b' "$1"; done; }
+ok='\006\000\000' timer='\001\000'
+{ printf '\001\003\140\120\000\011\005\047\007'; repeat "$ok" 6; printf '\006\007\003'; repeat "$timer" 3
+  repeat "$ok" 20; printf '\006\007\002'; repeat "$timer" 3; repeat "$ok" 30; printf '\006\007\001'
+  repeat "$timer" 3; repeat "$ok" 60; } >"$sender_seeds/window-resends"
+{ printf '\002\003\140\120\000\011\005\047\007'; repeat '\006\006\000\020\003\006\000\000' 30
+  printf '\006\007\001'; repeat "$timer" 3; repeat '\006\006\000\020\003' 40; } >"$sender_seeds/advanced-ok"
+{ printf '\000\000\140\120\002\002\002\020\003'; repeat "$ok" 3; repeat '\006\012\000' 4; repeat "$timer" 6
+  repeat '\006\014\000' 5; repeat "$ok" 30; } >"$sender_seeds/ping-pong-busy-heating"
+{ printf '\001\003\140\040\011\001\000\057\021'; repeat "$ok$timer" 40; repeat "$timer" 20; } >"$sender_seeds/lost-oks"
+
+status=0
+run_target() {
+  local target=$1 corpus=$2 seed_dir=$3 max_len=$4
+  echo "fuzz: $target for ${seconds}s from $(ls "$seed_dir" | wc -l) seeds" >&2
+  # Seeds first, then the corpus the fuzzer grows (kept between runs, gitignored).
+  (cd "$build/artifacts" && "$build/bin/$target" -max_total_time="$seconds" -max_len="$max_len" -timeout=20 \
+    -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$build/artifacts/" "$corpus" "$seed_dir" \
+    2>"$build/$target.log") || {
+    local code=$?
+    tail -n 60 "$build/$target.log" >&2
+    echo "fuzz: $target FAILED (exit $code); reproduce with $build/bin/$target $build/artifacts/<crash-file>" >&2
+    status=1
+    return
+  }
+  grep -E '^stat::number_of_executed_units|^stat::peak_rss_mb' "$build/$target.log" | sed "s/^/fuzz: $target: /" >&2 || true
+  echo "fuzz: $target: no crash in ${seconds}s" >&2
 }
-grep -E '^stat::number_of_executed_units|^stat::peak_rss_mb' "$build/fuzz.log" | sed 's/^/fuzz: /' >&2 || true
-echo "fuzz: no crash in ${seconds}s" >&2
+run_target fuzz_pipeline "$work" "$seeds" 65536
+run_target fuzz_sender "$sender_work" "$sender_seeds" 8192
+exit $status

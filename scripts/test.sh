@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds (warnings as errors), runs every test, then
 # runs the whole suite again under AddressSanitizer + UndefinedBehaviorSanitizer
-# and fuzzes the parser for a short while.
+# and runs the fuzz targets (the pipeline, the sender) for 20 s each.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -17,5 +17,5 @@ ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build-asan --output-on-failure -j"$jobs"
 
 if [ -x fuzz/run.sh ]; then
-  fuzz/run.sh 30
+  fuzz/run.sh 20
 fi

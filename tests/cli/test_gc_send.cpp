@@ -4,6 +4,9 @@
 // faults; a silent printer and a fatal error end with exit status 1.
 #include <catch2/catch.hpp>
 
+#include <chrono>
+#include <functional>
+#include <set>
 #include <string>
 
 #include "serial_check.hpp"
@@ -99,10 +102,11 @@ TEST_CASE("gc-send: corrupted lines, lost oks, busy stalls, spurious resends: no
     INFO(flow);
     std::string printer = "--time-scale 1000 --instant-moves --heat-rate 1000 " + faults;
     if (std::string(flow) == "advanced-ok") printer += " --advanced-ok";
-    // A lost ok costs one timeout in window mode (ADVANCED_OK's N needs none).
-    PtyRun r = send_through_pty(file, std::string("--flow ") + flow + " --timeout 0.02", printer);
+    // A lost ok is asked for as soon as it is overdue: no --timeout runs out.
+    PtyRun r = send_through_pty(file, std::string("--flow ") + flow, printer);
     require_exact(r, expected);
     CHECK(r.result.err.find("resends 0,") == std::string::npos);
+    CHECK(r.result.err.find(", timeouts 0") != std::string::npos);
   }
 }
 
@@ -161,4 +165,136 @@ TEST_CASE("gc-send: usage errors exit 2; --list-ports works without hardware", "
   CHECK(r.status == 1);
   CHECK(r.err.find("gc-send: cannot open /nonexistent/tty") != std::string::npos);
   CHECK(run(quote(tool_path("gc-virtual-printer")) + " --link").status == 2);
+}
+
+namespace {
+
+double seconds_of(const std::function<PtyRun()>& f, PtyRun& out) {
+  auto t0 = std::chrono::steady_clock::now();
+  out = f();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The input lines gc-send sends, in the order the printer executed them.
+std::vector<std::string> executed_of(const PtyRun& r) { return r.log.commands; }
+
+}  // namespace
+
+TEST_CASE("gc-send: 3000 short moves at 250000 baud with faults are exact with no timeout within 3 times the clean run",
+          "[gc-send]") {
+  // 0.2 mm pieces from the middle of a print; moves take no time, so the
+  // link and the recovery from faults are all that counts. Time scale 2
+  // keeps the test short; the figures in the README are at time scale 1.
+  std::string dir = gctest::temp_dir();
+  std::string file = dir + "/moves.gcode";
+  auto r = run(quote(tool_path("gc-subdivide")) + " --max 0.2 " +
+               quote(gctest::fixture_path("prusa_cube_0.2_mk3s_rel_zhop.gcode")) + " | sed -n 2001,5000p > " +
+               quote(file));
+  REQUIRE(r.status == 0);
+  auto expected = gctest::commands_of(gctest::read_file(file));
+  REQUIRE(expected.size() > 2900);
+  std::string printer = "--time-scale 2 --instant-moves";
+  std::string faults =
+      " --fault corrupt=0.01 --fault drop-ok=0.002 --fault garbage=0.002 --fault resend=0.002 --fault seed=3";
+  PtyRun clean, faulty;
+  double t_clean = seconds_of([&] { return send_through_pty(file, "", printer); }, clean);
+  double t_faulty = seconds_of([&] { return send_through_pty(file, "", printer + faults); }, faulty);
+  require_exact(clean, expected);
+  require_exact(faulty, expected);
+  INFO(faulty.result.err);
+  CHECK(faulty.result.err.find("resends 0,") == std::string::npos);
+  CHECK(faulty.result.err.find(", timeouts 0") != std::string::npos);
+  CHECK(t_faulty < 3 * t_clean);
+}
+
+TEST_CASE("gc-send: an over-long M117 is shortened and an over-long line stops the print before it without a stall",
+          "[gc-send]") {
+  std::string dir = gctest::temp_dir();
+  std::string file = dir + "/long.gcode";
+  std::string glued;
+  while (glued.size() < 33000) glued += "G1 X10.123 Y20.456 E0.01234 ";
+  gctest::write_file(file, "G28\nM117 " + std::string(150, 'x') + "\nG1 X10 F3000\n" + glued +
+                               "\nG1 X20\n");
+  PtyRun r = send_through_pty(file, "", "--time-scale 100 --heat-rate 1000");
+  INFO(r.result.err);
+  CHECK(r.result.status == 1);
+  CHECK(r.result.err.find("gc-send: line 2: warning: M117 message shortened to 88 bytes") != std::string::npos);
+  CHECK(r.result.err.find("gc-send: line 4: the line is 33") != std::string::npos);
+  CHECK(r.result.err.find("not sent: printing stopped before it (--skip-bad-lines leaves such lines out)") !=
+        std::string::npos);
+  CHECK(r.result.err.find("timeouts 0") != std::string::npos);
+  CHECK(executed_of(r) == std::vector<std::string>{"G28", "M117 " + std::string(83, 'x'), "G1 X10 F3000", "M400"});
+  // With --skip-bad-lines the print goes on after it.
+  PtyRun s = send_through_pty(file, "--skip-bad-lines", "--time-scale 100 --heat-rate 1000");
+  CHECK(s.result.status == 0);
+  CHECK(executed_of(s) ==
+        std::vector<std::string>{"G28", "M117 " + std::string(83, 'x'), "G1 X10 F3000", "G1 X20", "M400"});
+  // A printer that keeps more takes it whole.
+  PtyRun t = send_through_pty(file, "--max-line 200", "--time-scale 100 --heat-rate 1000 --max-line 200");
+  CHECK(t.result.status == 1);
+  CHECK(executed_of(t).at(1) == "M117 " + std::string(150, 'x'));
+}
+
+TEST_CASE("gc-send: without --max-line the limit reported in M115 applies", "[gc-send]") {
+  std::string dir = gctest::temp_dir();
+  std::string file = dir + "/msg.gcode";
+  gctest::write_file(file, "M117 " + std::string(60, 'y') + "\n");
+  PtyRun r = send_through_pty(file, "", "--time-scale 100 --max-line 40");
+  INFO(r.result.err);
+  CHECK(r.result.status == 0);
+  CHECK(executed_of(r) == std::vector<std::string>{"M117 " + std::string(27, 'y'), "M400"});
+}
+
+TEST_CASE("gc-send: binary junk is refused with its line number or left out with --skip-bad-lines", "[gc-send]") {
+  std::string dir = gctest::temp_dir();
+  std::string file = dir + "/junk.gcode";
+  // A PNG header glued into the G-code.
+  static const char kJunk[] = "G28\nG1 X5 F3000\n\x89PNG\r\x1a\n\x00\x00\x00\rIHDR\nG1 X6\n";
+  gctest::write_file(file, std::string(kJunk, sizeof kJunk - 1));
+  PtyRun r = send_through_pty(file, "", "--time-scale 100 --heat-rate 1000");
+  INFO(r.result.err);
+  CHECK(r.result.status == 1);
+  CHECK(r.result.err.find("gc-send: line 3: byte 0x89 at column 1 is not G-code text") != std::string::npos);
+  CHECK(executed_of(r) == std::vector<std::string>{"G28", "G1 X5 F3000", "M400"});
+  PtyRun s = send_through_pty(file, "--skip-bad-lines", "--time-scale 100 --heat-rate 1000");
+  CHECK(s.result.status == 0);
+  CHECK(s.result.err.find("gc-send: line 4: warning: byte 0x00 at column 1") != std::string::npos);
+  CHECK(s.result.err.find("left out 2") != std::string::npos);
+  CHECK(executed_of(s) == std::vector<std::string>{"G28", "G1 X5 F3000", "G1 X6", "M400"});
+}
+
+TEST_CASE("gc-send: an empty input or one without a command prints nothing and exits 1", "[gc-send]") {
+  for (const char* input : {"", "; sliced by nothing\n\n   \n"}) {
+    auto r = run(quote(tool_path("gc-send")) + " --port virtual:time-scale=100", input);
+    CHECK(r.status == 1);
+    CHECK(r.err.find("gc-send: nothing was printed: the input has no G-code command") != std::string::npos);
+  }
+}
+
+TEST_CASE("gc-send: a pseudo-terminal without a reported baud rate is an unlimited link", "[gc-send]") {
+  std::string dir = gctest::temp_dir();
+  std::string file = dir + "/moves.gcode";
+  gctest::write_file(file, "G1 X10 F6000\nG1 X20\nG1 X30\n");
+  PtyRun r = send_through_pty(file, "", "--time-scale 100 --no-link-report");
+  INFO(r.result.err);
+  CHECK(r.result.status == 0);
+  CHECK(r.result.err.find("link unlimited (pseudo-terminal)") != std::string::npos);
+  CHECK(r.result.err.find("utilisation") == std::string::npos);
+  // With the simulated rate reported, the utilisation is against it.
+  PtyRun s = send_through_pty(file, "", "--time-scale 100");
+  CHECK(s.result.err.find("link utilisation ") != std::string::npos);
+  CHECK(s.result.err.find("(250000 baud, time scale 100)") != std::string::npos);
+}
+
+TEST_CASE("gc-send: --help and the man page name the same options", "[gc-send]") {
+  auto help = run(quote(tool_path("gc-send")) + " --help");
+  REQUIRE(help.status == 0);
+  std::string man = gctest::read_file(std::string(GC_FIXTURES_DIR) + "/../../man/gc-send.1");
+  // Examples also run other tools (gc-subdivide --max, gc-virtual-printer --link).
+  std::string help_options = help.out.substr(help.out.find("Options:"));
+  std::string man_options = man.substr(0, man.find(".SH EXAMPLES"));
+  std::set<std::string> in_help = gctest::long_options(help_options);
+  CHECK(in_help == gctest::long_options(man_options));
+  CHECK(in_help.count("--max-line") == 1);
+  CHECK(in_help.count("--skip-bad-lines") == 1);
 }

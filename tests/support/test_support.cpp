@@ -225,4 +225,20 @@ std::string run_stages(std::string_view text, std::initializer_list<gcode::Stage
   return run_stages(pipeline, text);
 }
 
+Subdivided subdivide(std::string_view text, const gcode::SubdivideOptions& options,
+                     gcode::Diagnostics* diagnostics) {
+  gcode::LayerMarkers markers;
+  gcode::Pipeline pipeline(markers, gcode::PipelineOptions{.layers = false});
+  gcode::Subdivider subdivider(options, pipeline.precision(), diagnostics);
+  pipeline.add(subdivider);
+  std::string out = run_stages(pipeline, text);
+  return {std::move(out), subdivider.stats()};
+}
+
+std::string subdivided(std::string_view text, double max_length) {
+  gcode::SubdivideOptions options;
+  options.max_length = max_length;
+  return subdivide(text, options).text;
+}
+
 }  // namespace gctest

@@ -10,8 +10,10 @@
 #include <string_view>
 #include <vector>
 
+#include "gcode/core/diagnostics.hpp"
 #include "gcode/core/machine_state.hpp"
 #include "gcode/pipeline/pipeline.hpp"
+#include "gcode/transform/subdivide.hpp"
 
 namespace gctest {
 
@@ -94,5 +96,14 @@ LinePlace places_of(const std::string& text);
 std::string run_stages(std::string_view text, std::initializer_list<gcode::Stage*> stages, bool layers = true);
 // The same with a pipeline the caller set up (its stages added, no writer yet).
 std::string run_stages(gcode::Pipeline& pipeline, std::string_view text);
+// `text` through the Subdivider, line by line as gc-subdivide runs it.
+struct Subdivided {
+  std::string text;
+  gcode::SubdivideStats stats;
+};
+Subdivided subdivide(std::string_view text, const gcode::SubdivideOptions& options,
+                     gcode::Diagnostics* diagnostics = nullptr);
+// `text` with every move cut into pieces of at most `max_length` mm (gc-subdivide --max).
+std::string subdivided(std::string_view text, double max_length);
 
 }  // namespace gctest

@@ -28,6 +28,14 @@ TEST_CASE("serial command_for_sending drops an existing number and checksum", "[
   CHECK(command_for_sending("N17 G1 X1 *99 ") == "G1 X1");
   CHECK(command_for_sending("M117 5*3 is 15") == "M117 5*3 is 15");
   CHECK(command_for_sending("") == "");
+  CHECK(command_for_sending("\tG1 X1\r") == "G1 X1");  // blanks and a CRLF's CR
+}
+
+TEST_CASE("serial command_for_sending keeps control bytes for the line check to see", "[serial]") {
+  using namespace std::string_literals;
+  CHECK(command_for_sending("\0\0\rIHDR"s) == "\0\0\rIHDR"s);
+  CHECK(command_for_sending("G1 X1\0"s) == "G1 X1\0"s);
+  CHECK(command_for_sending("\x1bG1") == "\x1bG1");
 }
 
 TEST_CASE("serial ok answers, plain and ADVANCED_OK", "[serial]") {

@@ -49,7 +49,7 @@ Outcome simulate(const std::vector<std::string>& commands, SenderConfig sc, Virt
   {
     VirtualPrinter printer(pc, log);
     sc.link_bytes_per_second = pc.baud / 10;
-    Sender sender(sc, [](LogLevel, std::string_view m) {
+    Sender sender(sc, [](LogLevel, std::uint64_t, std::string_view m) {
       if (std::getenv("GC_TRACE") != nullptr) std::fprintf(stderr, "%.*s\n", static_cast<int>(m.size()), m.data());
     });
     sender.set_trace(std::getenv("GC_TRACE") != nullptr);
@@ -212,7 +212,44 @@ TEST_CASE("sender: lost oks alone are recovered by M105, the printer keeps print
   pc.drop_ok = 0.01;
   Outcome o = simulate(commands, sc, pc);
   require_exact(o, commands);
-  CHECK(o.sender.timeouts >= o.printer.dropped_oks);
+  // Each lost ok stalls ping-pong, and the sender asks as soon as the answer
+  // is overdue, long before the 3 s timeout.
+  CHECK(o.sender.probes >= o.printer.dropped_oks);
+  CHECK(o.sender.timeouts == 0);
+}
+
+TEST_CASE("sender: faults on a link-bound printer cost well under twice the clean time and no timeout", "[serial]") {
+  // 3000 pieces of at most 0.2 mm from the middle of a print; moves take no
+  // time, so every lost ok or resend shows in the time (simulated, so the
+  // figures are exact).
+  std::string pieces = gctest::subdivided(
+      gctest::read_file(gctest::fixture_path("prusa_cube_0.2_mk3s_rel_zhop.gcode")), 0.2);
+  std::vector<std::string> commands;
+  for (auto& c : gctest::commands_of(pieces, 5000)) commands.push_back(c.text);
+  commands.erase(commands.begin(), commands.begin() + 2000);
+  for (FlowMode mode : {FlowMode::Window, FlowMode::AdvancedOk, FlowMode::PingPong}) {
+    SenderConfig sc;
+    sc.flow = mode;
+    VirtualPrinterConfig pc;
+    pc.advanced_ok = mode == FlowMode::AdvancedOk;
+    pc.instant_moves = true;
+    pc.heat_rate = 1e6;
+    Outcome clean = simulate(commands, sc, pc);
+    require_exact(clean, commands);
+    CHECK(clean.sender.probes == 0);
+    pc.corrupt = 0.01;
+    pc.drop_ok = 0.002;
+    pc.resend = 0.002;
+    pc.garbage = 0.002;
+    pc.seed = 3;
+    Outcome faulty = simulate(commands, sc, pc);
+    INFO(flow_mode_name(mode) << ": clean " << clean.seconds << " s, faulty " << faulty.seconds << " s");
+    require_exact(faulty, commands);
+    CHECK(faulty.printer.corrupted >= 20);
+    CHECK(faulty.printer.dropped_oks >= 3);
+    CHECK(faulty.sender.timeouts == 0);
+    CHECK(faulty.seconds < 1.6 * clean.seconds);
+  }
 }
 
 TEST_CASE("sender: a fatal printer error stops the print", "[serial]") {

@@ -3,6 +3,7 @@
 // error replies, and answers only when a command leaves the queue.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -132,4 +133,49 @@ TEST_CASE("virtual printer options parse, bad ones are rejected", "[serial]") {
   CHECK_THROWS_AS(parse_virtual_options("corrupt=2", c), std::invalid_argument);
   CHECK_THROWS_AS(parse_virtual_options("queue=1.5", c), std::invalid_argument);
   CHECK_THROWS_AS(parse_virtual_options("time-scale=0", c), std::invalid_argument);
+}
+
+TEST_CASE("virtual printer: an over-long line is cut at MAX_CMD_SIZE and refused like Marlin does", "[serial]") {
+  VirtualPrinter p(VirtualPrinterConfig{});
+  answers(p, 1);
+  p.receive("M110 N0\n" + numbered(1, "G90"), 1);
+  CHECK(answers(p, 2) == std::vector<std::string>{"ok", "ok"});
+  // 155 characters of M117 text: Marlin keeps 95 bytes, the checksum is cut off.
+  std::string message = "M117 " + std::string(150, 'x');
+  p.receive(numbered(2, message), 2);
+  CHECK(answers(p, 3) ==
+        std::vector<std::string>{"Error:No Checksum with line number, Last Line: 1", "Resend: 2", "ok"});
+  // Lines glued into one of 33 KB: longer than the RX buffer, read as it
+  // arrives by an idle printer, so nothing overruns and it is refused too.
+  std::string glued;
+  while (glued.size() < 33000) glued += "G1 X10.123 Y20.456 E0.01234 ";
+  p.receive(numbered(2, glued), 3);
+  CHECK(answers(p, 10) ==
+        std::vector<std::string>{"Error:No Checksum with line number, Last Line: 1", "Resend: 2", "ok"});
+  CHECK(p.stats().overrun_bytes == 0);
+  // A line that fits goes through: 95 bytes with N and checksum.
+  std::string fits = numbered(2, "M117 " + std::string(95 - 12, 'y'));
+  REQUIRE(fits.size() == 96);
+  p.receive(fits, 10);
+  CHECK(answers(p, 11) == std::vector<std::string>{"ok"});
+  CHECK(p.stats().accepted_lines == 2);
+}
+
+TEST_CASE("virtual printer: max-line sets MAX_CMD_SIZE which M115 reports and report-link=off hides the link", "[serial]") {
+  VirtualPrinterConfig c;
+  parse_virtual_options("max-line=40,report-link=off", c);
+  CHECK(c.max_line == 40);
+  CHECK_FALSE(c.report_link);
+  VirtualPrinter p(c);
+  answers(p, 1);
+  p.receive("M115\n", 1);
+  std::vector<std::string> a = answers(p, 2);
+  REQUIRE_FALSE(a.empty());
+  CHECK(a[0].rfind("FIRMWARE_NAME:Marlin", 0) == 0);
+  CHECK(a[0].find("BAUD:") == std::string::npos);
+  CHECK(a[0].find("TIME_SCALE:") == std::string::npos);
+  CHECK(std::find(a.begin(), a.end(), "Cap:MAX_CMD_SIZE:40") != a.end());
+  p.receive("M110 N0\n" + numbered(1, "M117 " + std::string(40, 'z')), 2);
+  CHECK(answers(p, 3) ==
+        std::vector<std::string>{"ok", "Error:No Checksum with line number, Last Line: 0", "Resend: 1", "ok"});
 }

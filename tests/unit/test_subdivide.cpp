@@ -24,12 +24,8 @@ struct Result {
 
 Result subdivide(std::string_view input, const SubdivideOptions& options) {
   gcode::Diagnostics diag("test", -1);
-  gcode::LayerMarkers markers;
-  gcode::Pipeline pipeline(markers, gcode::PipelineOptions{.layers = false});
-  gcode::Subdivider s(options, pipeline.precision(), &diag);
-  pipeline.add(s);
-  std::string out = gctest::run_stages(pipeline, input);
-  return {out, s.stats(), diag.warnings()};
+  gctest::Subdivided r = gctest::subdivide(input, options, &diag);
+  return {r.text, r.stats, diag.warnings()};
 }
 
 SubdivideOptions max_of(double mm) {

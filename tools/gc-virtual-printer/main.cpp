@@ -90,11 +90,17 @@ int main(int argc, char** argv) {
   app.add_option("--baud", c.baud, "Simulated link speed (default 250000)")->type_name("BAUD");
   app.add_option("--queue", c.queue, "Command queue entries, Marlin BUFSIZE (default 4)")->type_name("N");
   app.add_option("--rx-buffer", c.rx_buffer, "Serial receive buffer, RX_BUFFER_SIZE (default 128)")->type_name("BYTES");
+  app.add_option("--max-line", c.max_line,
+                 "Command buffer, MAX_CMD_SIZE (default 96): a line keeps its first BYTES - 1 bytes")
+      ->type_name("BYTES");
   app.add_option("--planner", c.planner, "Planner blocks, BLOCK_BUFFER_SIZE (default 16)")->type_name("N");
   app.add_option("--time-scale", c.time_scale, "Run this many times faster than real time (default 1)")
       ->type_name("X");
   app.add_flag("--advanced-ok", c.advanced_ok, "Answer \"ok N<n> P<planner free> B<queue free>\"");
   app.add_flag("--instant-moves", c.instant_moves, "Moves take no time: only the link limits the speed");
+  bool no_link_report = false;
+  app.add_flag("--no-link-report", no_link_report,
+               "M115 does not name the simulated BAUD and TIME_SCALE, as a real firmware behind a pty");
   app.add_option("--heat-rate", c.heat_rate, "Heating in degrees per second (default 10; the bed a third of it)")
       ->type_name("DEG_PER_S");
   app.add_option("--fault", o.faults,
@@ -108,8 +114,10 @@ int main(int argc, char** argv) {
     std::string opts;
     for (const std::string& f : o.faults) opts += f + ",";
     parse_virtual_options(opts, c);
-    if (c.baud < 50 || c.queue < 1 || c.rx_buffer < 16 || c.planner < 1 || !(c.time_scale > 0))
-      throw gcode::cli::UsageError("--baud, --queue, --rx-buffer, --planner and --time-scale need sensible values");
+    if (no_link_report) c.report_link = false;
+    if (c.baud < 50 || c.queue < 1 || c.rx_buffer < 16 || c.max_line < 16 || c.planner < 1 || !(c.time_scale > 0))
+      throw gcode::cli::UsageError(
+          "--baud, --queue, --rx-buffer, --max-line, --planner and --time-scale need sensible values");
   });
   return tool.run(argc, argv, [&] { return run(o, c); });
 }

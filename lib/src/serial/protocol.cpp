@@ -30,6 +30,14 @@ std::string_view trim(std::string_view s) {
 
 bool is_digit(char c) { return c >= '0' && c <= '9'; }
 
+// Blanks around a command, and the CR of a CRLF line; not other control
+// bytes: a line that holds them is junk, and the sender must see it whole.
+std::string_view trim_command(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  return s;
+}
+
 // The first integer in `s` (after any non-digits), or -1.
 long long first_integer(std::string_view s) {
   std::size_t i = 0;
@@ -178,18 +186,18 @@ Response parse_response(std::string_view raw) {
 }
 
 std::string_view command_for_sending(std::string_view code) {
-  std::string_view s = trim(code);
+  std::string_view s = trim_command(code);
   if (!s.empty() && (s[0] == 'N' || s[0] == 'n') && s.size() > 1 && (is_digit(s[1]) || s[1] == '-')) {
     std::size_t i = 1;
     if (s[i] == '-') ++i;
     while (i < s.size() && is_digit(s[i])) ++i;
-    s = trim(s.substr(i));
+    s = trim_command(s.substr(i));
   }
   std::size_t star = s.rfind('*');
   if (star != std::string_view::npos) {
     bool digits = star + 1 < s.size();
     for (std::size_t i = star + 1; i < s.size(); ++i) digits = digits && is_digit(s[i]);
-    if (digits) s = trim(s.substr(0, star));
+    if (digits) s = trim_command(s.substr(0, star));
   }
   return s;
 }

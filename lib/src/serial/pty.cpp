@@ -1,4 +1,6 @@
 #include <fcntl.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <termios.h>
 #include <unistd.h>
 
@@ -12,6 +14,15 @@
 #include "gcode/serial/port.hpp"
 
 namespace gcode::serial {
+
+bool is_pseudo_terminal(int fd) {
+  struct stat st {};
+  if (fstat(fd, &st) != 0 || !S_ISCHR(st.st_mode)) return false;
+  // Linux: Unix98 pty slaves (/dev/pts/N) have majors 136-143, BSD-style
+  // ones (/dev/ttyp0) major 3.
+  unsigned m = major(st.st_rdev);
+  return (m >= 136 && m <= 143) || m == 3;
+}
 
 PseudoTerminal::PseudoTerminal(const std::string& link_path) : link_(link_path) {
   master_ = posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);

@@ -64,7 +64,9 @@ void SendSession::run() {
 void SendSession::line(const TrackedLine& t, Emitter&) {
   ++input_lines_;
   const Line& line = t.line;
-  if (line.kind == CommandKind::None) return;  // blank or comment only
+  // Blank or comment only; a line that is neither (binary junk) goes to the
+  // sender, which refuses what the firmware cannot read.
+  if (line.kind == CommandKind::None && !line.malformed) return;
   if (line.kind == CommandKind::Host) {
     // "@pause" and friends are for the host, never for the firmware.
     ++host_commands_;

@@ -1,6 +1,7 @@
 #include "gcode/serial/sender.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include <fmt/format.h>
@@ -11,18 +12,51 @@ namespace gcode::serial {
 
 namespace {
 
-// Commands whose "ok" legitimately takes long: heating waits, homing, probing,
-// dwell, waiting for the moves to finish.
-bool is_long_running(const Line& line) {
-  return line.is_m(109) || line.is_m(190) || line.is_m(191) || line.is_m(303) || line.is_m(400) || line.is_g(28) ||
-         line.is_g(29) || line.is_g(4) || line.is_g(34) || line.is_g(33) || line.is_m(600) || line.is_m(0) ||
-         line.is_m(1);
+// Commands whose "ok" takes a time nothing in the file tells: heating
+// waits, homing, probing and levelling, dwell, waiting for the user.
+bool is_unbounded(const Line& line) {
+  return line.is_m(109) || line.is_m(190) || line.is_m(191) || line.is_m(116) || line.is_m(303) ||
+         line.is_m(600) || line.is_m(0) || line.is_m(1) || line.is_m(226) || line.is_m(48) || line.is_g(28) ||
+         line.is_g(29) || line.is_g(30) || line.is_g(4) || line.is_g(26) || line.is_g(33) || line.is_g(34) ||
+         line.is_g(12);
+}
+
+// Commands Marlin answers at once, without waiting for the moves before them
+// (others may wait until the planner is empty; the sender assumes they do).
+bool is_instant(const Line& line) {
+  if (line.letter == 'G') return line.number == 90 || line.number == 91 || line.number == 92 || line.number == 20 ||
+                                 line.number == 21;
+  if (line.letter != 'M') return false;
+  switch (line.number) {
+    case 73: case 82: case 83: case 104: case 105: case 106: case 107: case 110: case 115: case 117: case 118:
+    case 140: case 141: case 155: case 201: case 203: case 204: case 205: case 220: case 221:
+      return true;
+    default:
+      return false;
+  }
+}
+
+EstimatorOptions estimator_options() {
+  EstimatorOptions o;
+  o.heat_time = false;  // heating has no bound here: keepalives tell
+  o.home_time = 0;
+  o.lookahead = 16;     // Marlin's planner: times are final 16 moves later
+  return o;
 }
 
 }  // namespace
 
 Sender::Sender(const SenderConfig& config, Logger log)
-    : config_(config), log_(std::move(log)), flow_(config.flow, config.queue, config.rx_buffer), ring_(2048) {}
+    : config_(config),
+      log_(std::move(log)),
+      flow_(config.flow, config.queue, config.rx_buffer),
+      clock_(config.link_bytes_per_second, config.time_scale, config.planner_blocks),
+      estimator_(estimator_options(), this),
+      ring_(2048) {}
+
+void Sender::log(LogLevel level, std::uint64_t input_line, std::string_view message) const {
+  if (log_) log_(level, input_line, message);
+}
 
 void Sender::start(double now) {
   last_rx_ = last_any_rx_ = now;
@@ -46,8 +80,48 @@ void Sender::grow_ring() {
   ring_.swap(bigger);
 }
 
+void Sender::on_time(std::int64_t tag, double seconds) {
+  // Final times arrive up to 16 moves after the line was queued, well within
+  // the history; anything older is no longer needed.
+  if (tag < std::max<long long>(1, next_send_ - kHistory) || tag >= next_number_) return;
+  Slot& s = slot(tag);
+  if (!s.motion_final) {
+    s.motion = 0;
+    s.motion_final = true;
+  }
+  s.motion += seconds;
+}
+
 void Sender::submit(std::string_view command, std::uint64_t source_line, int layer) {
-  if (command.empty() || cancelled_) return;
+  if (command.empty() || cancelled_ || input_done_) return;
+  LineCheck check = check_line(command, next_number_, config_.max_line);
+  if (check.problem == LineProblem::Shortened) {
+    ++stats_.shortened;
+    log(LogLevel::Warning, source_line, serial::describe(check, config_.max_line));
+    command = check.command;
+  } else if (check.problem != LineProblem::None) {
+    std::string why = serial::describe(check, config_.max_line);
+    if (config_.skip_bad_lines) {
+      ++stats_.skipped;
+      log(LogLevel::Warning, source_line, why + "; left out (--skip-bad-lines)");
+      return;
+    }
+    refuse(source_line, std::move(why));
+    return;
+  }
+  enqueue(command, source_line, layer);
+}
+
+void Sender::refuse(std::uint64_t source_line, std::string why) {
+  // Everything before the line is printed; nothing from it on.
+  refusal_ = fmt::format("line {}: {}; not sent: printing stopped before it (--skip-bad-lines leaves such lines out)",
+                         source_line, why);
+  input_done_ = true;
+  estimator_.finish();
+  if (next_number_ == 1) fail(refusal_);  // nothing before it to print
+}
+
+void Sender::enqueue(std::string_view command, std::uint64_t source_line, int layer) {
   if (next_number_ - std::max<long long>(1, next_send_ - kHistory) >= static_cast<long long>(ring_.size())) grow_ring();
   Slot& s = slot(next_number_);
   s.wire.clear();  // keeps its capacity: no allocation per line once warm
@@ -55,13 +129,34 @@ void Sender::submit(std::string_view command, std::uint64_t source_line, int lay
   s.source_line = source_line;
   s.layer = layer;
   Line line = Line::parse(command);
-  s.long_running = is_long_running(line);
+  s.unbounded = is_unbounded(line);
+  // M400 waits for the planner to empty: bounded by the moves, but long.
+  s.long_running = s.unbounded || line.is_m(400);
   s.temperature_query = line.is_m(105);
+  Move move = machine_.apply(line);
+  // Until the estimator's time is final (16 moves later), length / feed rate.
+  s.motion = 0;
+  s.motion_final = false;
+  double length = move.length > 0 ? move.length : std::fabs(move.filament);
+  bool motion_command = move.kind == MoveKind::Linear || move.kind == MoveKind::Arc;
+  s.move = motion_command && !move.ignored && length > 0;
+  // "G1 F1200" moves nothing and is answered at once.
+  s.instant = !s.move && (motion_command || is_instant(line));
+  s.nominal = s.move && move.feedrate > 0 ? length / (move.feedrate / 60) : 0;
+  s.motion = s.nominal;
+  estimator_.set_tag(next_number_);
   ++next_number_;
+  estimator_.add(line, move);
 }
 
 void Sender::end_of_input() {
+  if (input_done_) return;
   input_done_ = true;
+  estimator_.finish();
+  if (next_number_ == 1 && !cancelled_)
+    fail(stats_.skipped > 0 ? fmt::format("nothing was printed: all {} commands of the input were left out",
+                                          stats_.skipped)
+                            : std::string("nothing was printed: the input has no G-code command"));
 }
 
 void Sender::pump(double now) {
@@ -69,13 +164,25 @@ void Sender::pump(double now) {
   check_done(now);
 }
 
+void Sender::push_flight(long long number, std::size_t bytes, bool temperature_query) {
+  out_total_ += bytes;
+  flight_.push_back({number, static_cast<std::uint32_t>(bytes), temperature_query, out_total_, kNever});
+  flight_bytes_ += bytes;
+}
+
+std::size_t Sender::flight_lines() const {
+  return static_cast<std::size_t>(
+      std::count_if(flight_.begin(), flight_.end(), [](const Flight& f) { return f.number >= 0; }));
+}
+
 void Sender::send_unnumbered(std::string_view command, bool temperature_query, bool track) {
   out_ += command;
   out_ += '\n';
-  if (trace_) log_(LogLevel::Trace, fmt::format("-> {}", command));
+  if (trace_) log(LogLevel::Trace, 0, fmt::format("-> {}", command));
   if (track) {
-    flight_.push_back({-1, static_cast<std::uint32_t>(command.size() + 1), temperature_query});
-    flight_bytes_ += command.size() + 1;
+    push_flight(-1, command.size() + 1, temperature_query);
+  } else {
+    out_total_ += command.size() + 1;
   }
 }
 
@@ -86,11 +193,22 @@ void Sender::written(std::size_t n, double now) {
     out_.clear();
     out_pos_ = 0;
   }
-  if (n > 0 && settling_) settle_from_ = std::max(settle_from_, now);
+  if (n == 0) return;
+  written_total_ += n;
+  clock_.written(n, now);
+  for (Flight& f : flight_) {
+    if (f.end > written_total_) break;
+    if (f.arrival == kNever) f.arrival = clock_.arrival_of(static_cast<std::size_t>(written_total_ - f.end));
+  }
+  if (settling_) settle_from_ = std::max(settle_from_, now);
 }
 
+bool Sender::lines_in_flight() const { return flight_lines() > 0; }
+
 bool Sender::settled(double now) const {
-  return output().empty() && flight_.empty() && now >= settle_from_ + settle_quiet_ &&
+  // An M105 of ours still unanswered once every line is acknowledged was
+  // lost: the printer runs it as soon as it reaches the head of its queue.
+  return output().empty() && !lines_in_flight() && now >= settle_from_ + settle_quiet_ &&
          now >= last_any_rx_ + settle_quiet_;
 }
 
@@ -100,17 +218,24 @@ void Sender::fill(double now) {
     if (!settled(now)) return;
     settling_ = false;
   }
-  if (input_done_ && !final_queued_ && next_send_ == next_number_ && config_.finish_with_m400) {
-    final_queued_ = true;
-    submit("M400", 0, last_acked_.layer);
-  }
-  while (next_send_ < next_number_) {
+  // Room is kept in the printer's buffer for an M105, which goes out
+  // whenever an answer is overdue.
+  std::size_t reserve = probing() ? 0 : kProbe.size() + 1;
+  for (;;) {
+    if (input_done_ && !final_queued_ && next_send_ == next_number_ && config_.finish_with_m400 && next_number_ > 1) {
+      final_queued_ = true;
+      enqueue("M400", 0, last_acked_.layer);
+    }
+    if (next_send_ >= next_number_) break;
     const Slot& s = slot(next_send_);
-    if (!flow_.may_send(flight_.size(), flight_bytes_, s.wire.size())) break;
+    // Our M105s hold bytes of the printer's buffer but no place in its
+    // queue for long: it answers them as soon as they are read.
+    if (!flow_.may_send(flight_lines(), flight_bytes_ + reserve, s.wire.size())) break;
     out_ += s.wire;
-    if (trace_) log_(LogLevel::Trace, fmt::format("-> {} @{:.6f}", std::string_view(s.wire).substr(0, s.wire.size() - 1), now));
-    flight_.push_back({next_send_, static_cast<std::uint32_t>(s.wire.size()), s.temperature_query});
-    flight_bytes_ += s.wire.size();
+    if (trace_)
+      log(LogLevel::Trace, 0, fmt::format("-> {} @{:.6f}", std::string_view(s.wire).substr(0, s.wire.size() - 1), now));
+    push_flight(next_send_, s.wire.size(), s.temperature_query);
+    idle_hint_ = false;  // "wait" was about what went before
     if (next_send_ > highest_sent_) {
       highest_sent_ = next_send_;
       ++stats_.lines;
@@ -119,27 +244,37 @@ void Sender::fill(double now) {
     } else {
       ++stats_.resent_lines;
     }
-    if (flight_.size() == 1) last_rx_ = std::max(last_rx_, now);  // the timeout runs from the first line in flight
+    if (flight_lines() == 1) last_rx_ = std::max(last_rx_, now);  // the timeout runs from the first line in flight
     ++next_send_;
   }
   check_done(now);
 }
 
 void Sender::check_done(double now) {
+  // Done when every line is acknowledged (an M105 of ours may still be out).
   if (state_ == SenderState::Printing && input_done_ && (final_queued_ || !config_.finish_with_m400) &&
-      next_send_ == next_number_ && flight_.empty() && !settling_) {
-    state_ = SenderState::Done;
+      next_send_ == next_number_ && !lines_in_flight() && !settling_ && next_number_ > 1) {
+    if (refusal_.empty()) {
+      state_ = SenderState::Done;
+    } else {
+      fail(refusal_);
+    }
     stats_.print_end = now;
   }
   if (cancelled_ && state_ != SenderState::Failed && flight_.empty()) state_ = SenderState::Cancelled;
 }
 
-void Sender::acknowledge_front() {
+void Sender::acknowledge_front(double now) {
   const Flight f = flight_.front();
   flight_.pop_front();
   flight_bytes_ -= f.bytes;
+  if (f.number < 0) {
+    clock_.answered(0, now);
+    return;
+  }
+  const Slot& s = slot(f.number);
+  clock_.answered(s.move ? s.motion : 0, now, s.move ? s.nominal : 0);
   if (f.number > last_acked_.number) {
-    const Slot& s = slot(f.number);
     last_acked_.number = f.number;
     if (s.source_line != 0) {
       last_acked_.source_line = s.source_line;
@@ -148,11 +283,22 @@ void Sender::acknowledge_front() {
   }
 }
 
+void Sender::acknowledge_through(std::size_t index, double now) {
+  for (std::size_t i = 0; i <= index; ++i) acknowledge_front(now);
+}
+
 void Sender::on_ok(const Response& r, double now) {
   ++stats_.oks;
   timeouts_in_row_ = 0;
   last_rx_ = now;
   flow_.on_ok(r);
+  if (r.planner_free > learnt_planner_ && flow_.ok_numbers_acknowledge()) {
+    // The planner has at least P blocks (all of them free when it is empty).
+    // The largest P seen replaces the assumed size: a size too small only
+    // makes the sender wait longer for an answer.
+    learnt_planner_ = r.planner_free;
+    clock_.set_planner_blocks(learnt_planner_);
+  }
   if (state_ == SenderState::Handshake) {
     state_ = SenderState::Capabilities;
     handshake_retry_ = now;
@@ -174,23 +320,56 @@ void Sender::on_ok(const Response& r, double now) {
     expect_error_ok_ = false;
     return;
   }
+  probes_in_row_ = 0;
+  next_probe_ = 0;
+  idle_hint_ = false;
   if (flight_.empty()) {
     ++stats_.stray_oks;
-  } else if (flow_.ok_numbers_acknowledge() && r.line >= 0) {
-    // ok N<n>: everything sent before line n has been executed too.
-    while (!flight_.empty() && flight_.front().number <= r.line) acknowledge_front();
   } else if (r.has_temperature) {
-    // The answer to our M105 (or one in the file): Marlin runs commands in
-    // order, so every line sent before it is done.
+    // The answer to M105 (ours or one in the file): Marlin runs commands in
+    // order, so every line sent before it is done. With no M105 in flight it
+    // answers a question already written off: it frees nothing.
     auto it = std::find_if(flight_.begin(), flight_.end(), [](const Flight& f) { return f.temperature_query; });
     if (it == flight_.end()) {
-      acknowledge_front();
+      ++stats_.stray_oks;
     } else {
-      std::size_t count = static_cast<std::size_t>(it - flight_.begin()) + 1;
-      for (std::size_t i = 0; i < count; ++i) acknowledge_front();
+      // Our own M105s right behind it go too: the answer may be any of
+      // theirs (an earlier one's got lost), and a question left behind would
+      // wait for an answer already taken.
+      auto last = it;
+      while (last + 1 != flight_.end() && (last + 1)->number < 0) ++last;
+      acknowledge_through(static_cast<std::size_t>(last - flight_.begin()), now);
     }
+  } else if (flow_.ok_numbers_acknowledge()) {
+    // ADVANCED_OK: "ok N<n>" answers line n, so everything sent before it is
+    // done too (an M105 of ours among them lost its answer). An ok without N
+    // answers an unnumbered command: our M105 (turned into something else on
+    // the way) if it is next, else nothing we know of.
+    bool answered = false;
+    if (r.line >= 0) {
+      std::size_t last = flight_.size();
+      for (std::size_t i = 0; i < flight_.size(); ++i)
+        if (flight_[i].number >= 0 && flight_[i].number <= r.line) last = i;
+      answered = last < flight_.size();
+      if (answered) acknowledge_through(last, now);
+    } else {
+      auto it = std::find_if(flight_.begin(), flight_.end(), [](const Flight& f) { return f.number < 0; });
+      answered = it != flight_.end();
+      if (answered) {
+        // Taken for our M105 (garbled into another command), which frees
+        // nothing else: the lines before it have oks with numbers.
+        flight_bytes_ -= it->bytes;
+        flight_.erase(it);
+        clock_.answered(0, now);
+      }
+    }
+    if (!answered) ++stats_.stray_oks;
   } else {
-    acknowledge_front();
+    // A plain ok answers the oldest line. If that is our M105, whose answer
+    // carries temperatures, the M105 went wrong on the way (an unknown
+    // command) or its answer was lost; either way it is gone, and taking
+    // this ok for it frees the least.
+    acknowledge_front(now);
   }
   if (flight_.empty() && stats_.print_start >= 0) stats_.print_end = now;
   fill(now);
@@ -198,20 +377,22 @@ void Sender::on_ok(const Response& r, double now) {
 
 void Sender::on_resend(long long n, double now) {
   expect_error_ok_ = true;
+  idle_hint_ = false;
   if (state_ != SenderState::Printing) return;
-  if (n >= next_send_) {
-    // Nothing sent from there on: a request for the line about to go out.
-    ++stats_.duplicate_resends;
+  if (n < 1 || n > highest_sent_ + 1 || n > next_number_) {
+    // A line never sent: nothing to rewind to (its "ok" still follows).
+    ++stats_.ignored_resends;
     return;
   }
-  if (n < std::max<long long>(1, next_send_ - kHistory) || n < 1) {
+  if (n < std::max<long long>(1, next_send_ - kHistory)) {
     fail(fmt::format("the printer asked to resend line {}, which is no longer in the history (sent up to {})", n,
-                     next_send_ - 1));
+                     highest_sent_));
     return;
   }
   if (settling_ && n == settle_line_) {
-    // An echo of the request we are already handling: a line that was on
-    // the wire behind the bad one failed too.
+    // Line n is already being resent: this is a line that was on the wire
+    // behind the bad one and failed too (Marlin empties its buffer after an
+    // error, so each such line draws its own Error, Resend and ok).
     ++stats_.duplicate_resends;
     return;
   }
@@ -225,21 +406,31 @@ void Sender::on_resend(long long n, double now) {
     resend_count_ = 1;
   }
   ++stats_.resend_requests;
-  // Everything from line n on is lost or will be rejected: take it out of
-  // the flight list (with anything sent after it) and send it again.
+  // "Resend: n" says the printer has every line before n and nothing after:
+  // whatever of ours follows line n-1 in the flight list (lines from n on
+  // and any M105 sent after them) is lost or will be rejected.
   auto first = std::find_if(flight_.begin(), flight_.end(), [n](const Flight& f) { return f.number >= n; });
   std::size_t stale_bytes = 0;
   for (auto it = first; it != flight_.end(); ++it) stale_bytes += it->bytes;
   flight_bytes_ -= stale_bytes;
   flight_.erase(first, flight_.end());
   next_send_ = n;
+  // Wait until every line before n is acknowledged (the printer's queue is
+  // then empty and it reads each arriving byte at once) and the link has
+  // been quiet long enough for the stale lines to reach it and be rejected;
+  // their requests for n are repeats, and their rejections would empty the
+  // printer's buffer again, taking an early copy of line n with it.
   settling_ = true;
   settle_line_ = n;
   settle_from_ = now;
-  // Long enough for the stale lines to reach the printer and be rejected.
-  double rate = std::max(1.0, config_.link_bytes_per_second);
-  settle_quiet_ = std::clamp(2.0 * static_cast<double>(stale_bytes + output().size() + 64) / rate, 0.002, 0.5);
-  log_(LogLevel::Info, fmt::format("resend from {}", describe({n, slot(n).source_line, slot(n).layer})));
+  settle_quiet_ = clock_.quiet(stale_bytes + output().size());
+  log(LogLevel::Info, slot(n).source_line, fmt::format("resend from {}", describe({n, slot(n).source_line, slot(n).layer})));
+}
+
+void Sender::set_link(double bytes_per_second, double time_scale) {
+  config_.link_bytes_per_second = bytes_per_second;
+  config_.time_scale = time_scale;
+  clock_.set_link(bytes_per_second, time_scale);
 }
 
 void Sender::on_capability(std::string_view text) {
@@ -259,7 +450,16 @@ void Sender::on_capability(std::string_view text) {
     firmware_.baud = number_after("BAUD:");
     // A simulated printer's link runs at its own pace, not the port's.
     if (firmware_.time_scale > 0 && firmware_.baud > 0)
-      config_.link_bytes_per_second = firmware_.baud / 10 * firmware_.time_scale;
+      set_link(firmware_.baud / 10 * firmware_.time_scale, firmware_.time_scale);
+  }
+  constexpr std::string_view kMaxCmd = "Cap:MAX_CMD_SIZE:";
+  // Only from the handshake: lines already checked must stay valid.
+  if (text.rfind(kMaxCmd, 0) == 0 && state_ != SenderState::Printing) {
+    long long size = std::atoll(std::string(text.substr(kMaxCmd.size(), 12)).c_str());
+    if (size >= 16) {
+      firmware_.max_line = static_cast<std::size_t>(size);
+      if (config_.max_line_from_firmware) config_.max_line = firmware_.max_line;
+    }
   }
   if (cap("ADVANCED_OK")) {
     firmware_.advanced_ok = true;
@@ -271,10 +471,12 @@ void Sender::on_capability(std::string_view text) {
 }
 
 void Sender::on_line(std::string_view text, double now) {
-  if (trace_) log_(LogLevel::Trace, fmt::format("<- {} @{:.6f}", text, now));
+  if (trace_) log(LogLevel::Trace, 0, fmt::format("<- {} @{:.6f}", text, now));
   last_any_rx_ = now;
   if (settling_) settle_from_ = std::max(settle_from_, now);
   Response r = parse_response(text);
+  // The "ok" of a rejected line comes right after its "Resend:"; anything
+  // else in between means that ok was lost (or the firmware sends none).
   if (r.kind != ResponseKind::Ok && r.kind != ResponseKind::Resend && r.kind != ResponseKind::Empty)
     expect_error_ok_ = false;
   switch (r.kind) {
@@ -291,9 +493,9 @@ void Sender::on_line(std::string_view text, double now) {
       if (r.error == ErrorClass::Fatal) {
         fail(fmt::format("the printer reported a fatal error: {}; last acknowledged: {}", r.text, describe(last_acked_)));
       } else if (r.error == ErrorClass::Recoverable) {
-        log_(LogLevel::Warning, fmt::format("printer: Error:{}", r.text));
+        log(LogLevel::Warning, 0, fmt::format("printer: Error:{}", r.text));
       } else {
-        log_(LogLevel::Info, fmt::format("printer: Error:{}", r.text));
+        log(LogLevel::Info, 0, fmt::format("printer: Error:{}", r.text));
       }
       break;
     case ResponseKind::Busy:
@@ -301,16 +503,21 @@ void Sender::on_line(std::string_view text, double now) {
       timeouts_in_row_ = 0;
       last_rx_ = now;
       last_busy_ = now;
+      clock_.keepalive(now);
       break;
     case ResponseKind::Action:
-      log_(LogLevel::Warning, fmt::format("printer action: {}", r.text));
+      log(LogLevel::Warning, 0, fmt::format("printer action: {}", r.text));
       if (r.text.rfind("pause", 0) == 0 && r.text.rfind("paused", 0) != 0) paused_ = true;
       if (r.text.rfind("resume", 0) == 0 && r.text.rfind("resumed", 0) != 0) paused_ = false;
       if (r.text.rfind("cancel", 0) == 0) cancel();
       break;
     case ResponseKind::Temperature:
       // Heating waits (M109/M190) report temperatures instead of "busy".
-      if (!flight_.empty() && flight_.front().number > 0 && slot(flight_.front().number).long_running) last_rx_ = now;
+      if (std::any_of(flight_.begin(), flight_.end(),
+                      [this](const Flight& f) { return f.number > 0 && slot(f.number).long_running; })) {
+        last_rx_ = now;
+        clock_.keepalive(now);
+      }
       break;
     case ResponseKind::Capability:
       on_capability(r.text);
@@ -323,13 +530,16 @@ void Sender::on_line(std::string_view text, double now) {
       }
       break;
     case ResponseKind::Echo:
-      log_(LogLevel::Info, fmt::format("printer: {}", r.text));
+      log(LogLevel::Info, 0, fmt::format("printer: {}", r.text));
       break;
     case ResponseKind::Wait:
+      // Marlin (NO_TIMEOUTS) and Repetier say "wait" when their queue and
+      // buffer are empty: a line still believed in flight lost its answer.
+      if (state_ == SenderState::Printing && !flight_.empty() && output().empty()) idle_hint_ = true;
       break;
     case ResponseKind::Unknown:
       ++stats_.unknown;
-      log_(LogLevel::Info, fmt::format("printer: {}", r.text));
+      log(LogLevel::Info, 0, fmt::format("printer: {}", r.text));
       break;
   }
   fill(now);
@@ -346,15 +556,82 @@ double Sender::current_timeout() const {
   return t;
 }
 
+bool Sender::probing() const {
+  return std::any_of(flight_.begin(), flight_.end(), [](const Flight& f) { return f.number < 0; });
+}
+
+double Sender::overdue_at() const {
+  if (flight_.empty() || state_ != SenderState::Printing) return kNever;
+  // The answer the sender waits for: the oldest line's, or while an M105 of
+  // ours is out behind it, the newest one's (it answers for everything
+  // before it). With no line in flight there is nothing to ask about.
+  std::size_t first = 0;
+  while (first < flight_.size() && flight_[first].number < 0) ++first;
+  if (first == flight_.size()) return kNever;
+  std::size_t k = first;
+  for (std::size_t i = first; i < flight_.size(); ++i)
+    if (flight_[i].number < 0) k = i;
+  if (flight_[k].arrival == kNever) return kNever;
+  AnswerClock::Wait wait;
+  // (Questions before the first line are left over from before and have no
+  // bearing on when it is answered.)
+  for (std::size_t j = first; j <= k; ++j) {
+    if (flight_[j].number < 0) continue;
+    const Slot& s = slot(flight_[j].number);
+    wait.unbounded = wait.unbounded || s.unbounded;
+    if (s.move) ++wait.moves;
+    // A command that is neither a move nor known to answer at once may wait
+    // for the planner to empty.
+    if (!s.move && !s.instant) wait.empty = true;
+    if (j < k) wait.motion += s.motion;
+  }
+  // Asked already with a long command ahead: it answers when done, and its
+  // keepalives or --timeout tell how long that is.
+  if (flight_[k].number < 0 && wait.unbounded) return kNever;
+  double due = clock_.due(flight_[k].arrival, wait);
+  // A question without an answer (or one that did not fit) waits twice as
+  // long as the one before.
+  return std::max(due + clock_.margin() * ((1 << std::min(probes_in_row_, 10)) - 1), next_probe_);
+}
+
 double Sender::deadline() const {
-  if (finished()) return 1e300;
+  if (finished()) return kNever;
   if (state_ == SenderState::Capabilities && caps_answered_) return last_any_rx_ + kQuietStart;
   if (state_ == SenderState::Handshake || state_ == SenderState::Capabilities)
     return std::min(handshake_retry_ + std::min(1.0, config_.timeout / 3), handshake_start_ + config_.timeout);
-  double d = 1e300;
-  if (settling_ && flight_.empty()) d = std::max(settle_from_, last_any_rx_) + settle_quiet_;
-  if (!flight_.empty()) d = std::min(d, last_rx_ + current_timeout());
+  double d = kNever;
+  // (While paused or cancelled nothing is sent again: no timer for it.)
+  if (settling_ && !lines_in_flight() && !paused_ && !cancelled_)
+    d = std::max(settle_from_, last_any_rx_) + settle_quiet_;
+  if (!flight_.empty()) {
+    d = std::min(d, last_rx_ + current_timeout());
+    if (idle_hint_ && !probing() && lines_in_flight()) d = std::min(d, last_any_rx_);
+    if (probes_in_row_ < kQuickProbes) d = std::min(d, overdue_at());
+  }
   return d;
+}
+
+void Sender::probe(double now, bool silent) {
+  idle_hint_ = false;
+  ++probes_in_row_;  // asked or not, the next question waits longer
+  next_probe_ = now + clock_.margin() * (1 << std::min(probes_in_row_, 10));
+  if (silent) {
+    ++stats_.timeouts;
+    log(LogLevel::Warning, 0, fmt::format("no answer for {:.3g} s; asking with M105", now - last_rx_));
+    last_rx_ = now;
+  }
+  // Earlier questions stay in flight: their answers may still come, and
+  // "ok T:" answers the oldest. Each goes out only if it fits into the
+  // printer's buffer on top of everything believed in it.
+  if (flight_bytes_ + kProbe.size() + 1 >= static_cast<std::size_t>(flow_.rx_buffer())) return;
+  if (!silent) {
+    ++stats_.probes;
+    long long n = flight_.empty() ? -1 : flight_.front().number;
+    log(LogLevel::Info, n > 0 ? slot(n).source_line : 0,
+        n > 0 ? fmt::format("the answer to N{} is overdue; asking with M105", n)
+              : std::string("an answer is overdue; asking with M105"));
+  }
+  send_unnumbered(kProbe, true, true);
 }
 
 void Sender::on_timer(double now) {
@@ -383,25 +660,16 @@ void Sender::on_timer(double now) {
     return;
   }
   if (!flight_.empty() && now >= last_rx_ + current_timeout()) {
-    ++stats_.timeouts;
     if (++timeouts_in_row_ > config_.max_timeouts) {
-      fail(fmt::format("the printer stopped answering ({} timeouts of {} s in a row); last acknowledged: {}",
-                       timeouts_in_row_ - 1, config_.timeout, describe(last_acked_)));
+      ++stats_.timeouts;
+      fail(fmt::format("the printer stopped answering ({} timeouts of {:g} s in a row); last acknowledged: {}",
+                       timeouts_in_row_ - 1, current_timeout(), describe(last_acked_)));
       return;
     }
-    log_(LogLevel::Warning, fmt::format("no answer for {:.3g} s; asking with M105", now - last_rx_));
-    last_rx_ = now;
-    // An earlier probe whose answer got lost (or garbled into a plain "ok")
-    // would hold its place for ever: the new one replaces it.
-    for (auto it = flight_.begin(); it != flight_.end();) {
-      if (it->number < 0) {
-        flight_bytes_ -= it->bytes;
-        it = flight_.erase(it);
-      } else {
-        ++it;
-      }
-    }
-    send_unnumbered("M105", true, true);
+    probe(now, true);
+  } else if (lines_in_flight() &&
+             ((idle_hint_ && !probing()) || (now >= overdue_at() && probes_in_row_ < kQuickProbes))) {
+    probe(now, false);
   }
   fill(now);
 }

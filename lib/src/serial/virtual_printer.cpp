@@ -65,6 +65,8 @@ void parse_virtual_options(std::string_view text, VirtualPrinterConfig& c) {
       c.queue = static_cast<int>(count(1));
     } else if (key == "rx") {
       c.rx_buffer = static_cast<int>(count(16));
+    } else if (key == "max-line") {
+      c.max_line = static_cast<int>(count(16));
     } else if (key == "planner") {
       c.planner = static_cast<int>(count(1));
     } else if (key == "time-scale") {
@@ -74,6 +76,8 @@ void parse_virtual_options(std::string_view text, VirtualPrinterConfig& c) {
       c.advanced_ok = parse_flag(key, value);
     } else if (key == "instant-moves") {
       c.instant_moves = parse_flag(key, value);
+    } else if (key == "report-link") {
+      c.report_link = parse_flag(key, value);
     } else if (key == "heat-rate") {
       c.heat_rate = std::max(0.01, parse_value(key, value));
     } else if (key == "corrupt") {
@@ -234,26 +238,29 @@ void VirtualPrinter::arrive(char c, double t) {
   ++stats_.rx_bytes;
   if (halted_ || silent_ || disconnected_) return;
   now_ = std::max(now_, t);
+  // EMERGENCY_PARSER: M112 acts as it arrives, whatever the queue holds.
+  if (c != '\n' && c != '\r') {
+    if (emergency_.size() < 32) emergency_ += c;
+  } else if (!emergency_.empty()) {
+    std::string_view cmd = command_for_sending(emergency_);
+    bool m112 = cmd.size() >= 4 && (cmd[0] == 'M' || cmd[0] == 'm') && cmd.substr(1, 3) == "112" &&
+                (cmd.size() == 4 || cmd[4] < '0' || cmd[4] > '9');
+    emergency_.clear();
+    if (m112) {
+      send("Error:Printer halted. kill() called!");
+      halted_ = true;
+      return;
+    }
+  }
   // Marlin keeps one slot of its ring buffer free.
   if (rx_.size() - rx_head_ >= static_cast<std::size_t>(config_.rx_buffer - 1)) {
     ++stats_.overrun_bytes;
     return;
   }
   rx_ += c;
-  if (c == '\n') {
-    // EMERGENCY_PARSER: M112 acts as it arrives, whatever the queue holds.
-    std::size_t start = rx_.rfind('\n', rx_.size() - 2);
-    start = start == std::string::npos ? rx_head_ : std::max(start + 1, rx_head_);
-    std::string_view line = std::string_view(rx_).substr(start);
-    std::string_view cmd = command_for_sending(line.substr(0, line.size() - 1));
-    if (cmd.size() >= 4 && (cmd[0] == 'M' || cmd[0] == 'm') && cmd.substr(1, 3) == "112" &&
-        (cmd.size() == 4 || cmd[4] < '0' || cmd[4] > '9')) {
-      send("Error:Printer halted. kill() called!");
-      halted_ = true;
-      return;
-    }
-    if (wait_ == Wait::None) run(t);
-  }
+  // Between commands Marlin reads every byte as it comes (while its queue has
+  // room), so a line longer than the RX buffer does not overrun an idle printer.
+  if (wait_ == Wait::None) run(t);
 }
 
 void VirtualPrinter::update_temperatures(double t) {
@@ -305,7 +312,9 @@ void VirtualPrinter::parse_rx(double t) {
         partial_.swap(line);
         partial_.clear();
       }
-    } else if (partial_.size() < 95) {  // MAX_CMD_SIZE 96
+    } else if (partial_.size() + 1 < static_cast<std::size_t>(config_.max_line)) {
+      // Marlin keeps MAX_CMD_SIZE - 1 bytes and skips the rest of the line,
+      // its checksum included.
       partial_ += c;
     }
   }
@@ -495,15 +504,20 @@ void VirtualPrinter::start(double t) {
   } else if (line.is_m(110)) {
     if (line.find('N') != nullptr) last_n_ = static_cast<long long>(line.value_or('N', 0));
   } else if (line.is_m(115)) {
+    std::string link = config_.report_link ? fmt::format(" TIME_SCALE:{} BAUD:{}", config_.time_scale, config_.baud)
+                                           : std::string();
     send(fmt::format("FIRMWARE_NAME:Marlin 2.1.2 (gc-virtual-printer) SOURCE_CODE_URL:github.com/MarlinFirmware/Marlin "
-                     "PROTOCOL_VERSION:1.0 MACHINE_TYPE:Virtual EXTRUDER_COUNT:1 TIME_SCALE:{} BAUD:{}",
-                     config_.time_scale, config_.baud));
+                     "PROTOCOL_VERSION:1.0 MACHINE_TYPE:Virtual EXTRUDER_COUNT:1{}",
+                     link));
     send("Cap:SERIAL_XON_XOFF:0");
     send(fmt::format("Cap:ADVANCED_OK:{}", config_.advanced_ok ? 1 : 0));
     send("Cap:EMERGENCY_PARSER:1");
     send("Cap:AUTOREPORT_TEMP:1");
     send("Cap:AUTOREPORT_POS:0");
     send("Cap:HOST_ACTION_COMMANDS:1");
+    // Not a Marlin capability (Marlin does not report its MAX_CMD_SIZE); a
+    // host that reads it can size its lines.
+    send(fmt::format("Cap:MAX_CMD_SIZE:{}", config_.max_line));
   } else if (line.is_m(155)) {
     autoreport_ = line.value_or('S', 0);
     next_report_ = autoreport_ > 0 ? t + autoreport_ : (wait_ == Wait::Heating ? next_report_ : kNever);

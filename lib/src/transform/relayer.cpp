@@ -161,8 +161,23 @@ LayerAction RelayerPlan::join(const SpliceContext& context) {
   if (j.first_scale != 1)
     report_.push_back(fmt::format("{} layer {} overlaps the print: its extrusion x{}", next_.name(), j.first,
                                   mm(j.first_scale)));
+  warn_if_uneven(j);
   a.blocks.push_back(std::move(rest));
   return a;
+}
+
+// A join that has to squeeze or stretch a layer by half or more shows on the
+// part: the user should know before the printer does it.
+void RelayerPlan::warn_if_uneven(const Join& j) const {
+  if (diag_ == nullptr) return;
+  auto uneven = [](double scale) { return scale < 0.5 || scale > 1.5; };
+  if (uneven(j.first_scale))
+    diag_->warn(fmt::format("{} layer {} is printed with its extrusion x{} at the join: the seam may show",
+                            next_.name(), j.first, mm(j.first_scale)));
+  for (const JoinStep& s : j.fills)
+    if (uneven(s.scale))
+      diag_->warn(fmt::format("{} layer {} fills the gap with its extrusion x{}: the seam may show", next_.name(),
+                              s.layer, mm(s.scale)));
 }
 
 // ---------------------------------------------------------------------------

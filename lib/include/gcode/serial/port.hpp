@@ -19,6 +19,10 @@ struct PortOptions {
 // std::runtime_error with a readable message.
 int open_serial_port(const std::string& path, const PortOptions& options);
 
+// Whether `fd` is a pseudo-terminal (a simulated printer, Klipper's
+// /tmp/printer): its bytes cross at once, whatever baud rate is set.
+bool is_pseudo_terminal(int fd);
+
 struct PortInfo {
   std::string path;         // /dev/ttyACM0
   std::string description;  // the /dev/serial/by-id name or the driver

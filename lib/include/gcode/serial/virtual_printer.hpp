@@ -12,7 +12,10 @@
 //    into a command queue of `queue` (BUFSIZE) entries, checking line number
 //    and checksum with Marlin's exact messages ("Error:checksum mismatch,
 //    Last Line: 41", "Resend: 42", "ok") and emptying the RX buffer after an
-//    error, as Marlin does;
+//    error, as Marlin does; like Marlin it reads bytes as they arrive while
+//    no command blocks it and the queue has room, and keeps only the first
+//    `max_line` - 1 bytes of a line (MAX_CMD_SIZE): a longer line loses its
+//    checksum and is refused with "No Checksum with line number";
 //  * the head of the queue executes: a move waits for a free block in a
 //    planner of `planner` blocks, each taking length / feed rate; the "ok"
 //    goes out when the command leaves the queue (with ADVANCED_OK fields if
@@ -39,10 +42,12 @@ struct VirtualPrinterConfig {
   double baud = 250000;
   int queue = 4;              // BUFSIZE
   int rx_buffer = 128;        // RX_BUFFER_SIZE
+  int max_line = 96;          // MAX_CMD_SIZE: a line keeps max_line - 1 bytes
   int planner = 16;           // BLOCK_BUFFER_SIZE
   double time_scale = 1;      // simulated seconds per wall second
   bool advanced_ok = false;   // answer "ok N.. P.. B.."
   bool instant_moves = false; // moves take no time: the link is the only limit
+  bool report_link = true;    // M115 names TIME_SCALE and BAUD (a real firmware does not)
   double heat_rate = 10;      // degrees per second (the bed heats at a third of it)
   // Faults: probabilities per received line / per answer.
   double corrupt = 0;         // a received line gets one byte changed
@@ -58,9 +63,9 @@ struct VirtualPrinterConfig {
 };
 
 // Applies "key=value,key=value" (the part after "virtual:") to `config`.
-// Keys: baud queue rx planner time-scale advanced-ok instant-moves heat-rate
-// corrupt drop-ok resend garbage busy silent-after halt-after disconnect-after
-// seed log. Throws std::invalid_argument naming a bad key or value.
+// Keys: baud queue rx max-line planner time-scale advanced-ok instant-moves
+// report-link heat-rate corrupt drop-ok resend garbage busy silent-after
+// halt-after disconnect-after seed log. Throws std::invalid_argument naming a bad key or value.
 void parse_virtual_options(std::string_view text, VirtualPrinterConfig& config);
 
 struct VirtualPrinterStats {
@@ -141,6 +146,7 @@ class VirtualPrinter {
   std::string rx_;              // the RX ring buffer (front = oldest)
   std::size_t rx_head_ = 0;
   std::string partial_;         // the line being read out of the RX buffer
+  std::string emergency_;       // the start of the line arriving, for the emergency parser
 
   // printer -> host
   std::string tx_;

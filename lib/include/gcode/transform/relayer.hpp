@@ -83,6 +83,7 @@ class RelayerPlan : public SplicePlan {
 
  private:
   LayerAction join(const SpliceContext& context);
+  void warn_if_uneven(const Join& j) const;
 
   LayerIndex& next_;
   Options options_;

@@ -262,7 +262,6 @@ class SpliceStage : public Stage {
   bool dropping_ = false;   // main lines are left out
   bool left_ = false;       // the main stream was left for good
   StreamPoint printed_;     // the printed side while not following
-  double top_z_ = 0;        // while following
   Box2 extent_;             // while following
   Fixed shift_;
   SpliceRewrite rewrite_;
