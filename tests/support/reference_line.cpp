@@ -102,6 +102,23 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
+// The code part (before any ';') holds only "(...)" groups and blanks.
+bool is_paren_comment_line(const char* p, const char* end) {
+  const char* semi = static_cast<const char*>(std::memchr(p, ';', static_cast<std::size_t>(end - p)));
+  std::string_view code(p, static_cast<std::size_t>((semi != nullptr ? semi : end) - p));
+  bool inside = false;
+  for (char c : code) {
+    if (inside) {
+      inside = c != ')';
+    } else if (c == '(') {
+      inside = true;
+    } else if (!is_space(c)) {
+      return false;
+    }
+  }
+  return !inside;
+}
+
 }  // namespace
 
 ReferenceLine reference_parse(std::string_view text) {
@@ -112,6 +129,11 @@ ReferenceLine reference_parse(std::string_view text) {
   const char* end = p + text.size();
 
   while (p != end && is_space(*p)) ++p;
+  if (p != end && *p == '(' && is_paren_comment_line(p, end)) {
+    line.comment = std::string_view(p, static_cast<std::size_t>(end - p));
+    line.comment_pos = static_cast<std::size_t>(p - begin);
+    return line;
+  }
   // A ';' comment ends the code; find it once (M117 messages cannot hold ';').
   const char* code_end = end;
   if (p != end) {

@@ -132,9 +132,7 @@ inline SubdivideCheck check_subdivision(std::string_view input, std::string_view
       double scale = before.inches ? 25.4 : 1.0;
       Arc geometry;
       if (arc)
-        geometry = make_arc(im.start[kX], im.start[kY], im.end[kX], im.end[kY], il.number == 2,
-                            il.has('I') || il.has('J'), il.value_or('I', 0) * scale, il.value_or('J', 0) * scale,
-                            il.value_or('R', 0) * scale);
+        geometry = make_arc(il, im.start[kX], im.start[kY], im.end[kX], im.end[kY], scale);
       double filament = 0;
       std::size_t count = 0;
       for (;;) {

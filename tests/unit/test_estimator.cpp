@@ -151,6 +151,10 @@ TEST_CASE("an arc is timed along its length and a helix back to its start is no 
   // (1/31.4 of 100 mm/s) is within Marlin's default Z limits (5 mm/s, 100 mm/s^2 / 0.032).
   double circle = 10 * 3.141592653589793, helix = std::hypot(circle, 1.0);
   CHECK(run(with_setup({"G1 X0 Y0 F6000", "G4 S0", "G2 Z1 I5 J0"})) == Approx(trapezoid(helix, 0, 100, 0)).epsilon(1e-9));
+  // P1 (Marlin's ARC_P_CIRCLES): one more turn before it, the same 1 mm of Z.
+  double two_turns = std::hypot(2 * circle, 1.0);
+  CHECK(run(with_setup({"G1 X0 Y0 F6000", "G4 S0", "G2 Z1 I5 J0 P1"})) ==
+        Approx(trapezoid(two_turns, 0, 100, 0)).epsilon(1e-9));
 }
 
 TEST_CASE("dwells, heating and homing add their time", "[estimator]") {

@@ -71,6 +71,18 @@ TEST_CASE("host commands, macros, comments", "[line]") {
   Line p = Line::parse("G1 X1 (inline) Y2");
   CHECK(p.find('Y')->value() == 2);
   CHECK(p.comment == "(inline)");
+  // A line of "(...)" comments only is a comment line, not junk.
+  for (const char* text : {"(layer 2)", "  (a) (b) ; c", "(T0 PLA)"}) {
+    Line only = Line::parse(text);
+    INFO(text);
+    CHECK_FALSE(only.malformed);
+    CHECK(only.kind == CommandKind::None);
+    CHECK_FALSE(only.is_blank());
+    CHECK(only.code().empty());
+  }
+  CHECK(Line::parse("(layer 2)").comment_text() == "layer 2");
+  CHECK(Line::parse("(a (b) c)").malformed);  // they do not nest
+  CHECK(Line::parse("(unclosed").malformed);
   CHECK(Line::parse("").is_blank());
   CHECK(Line::parse("   \t").is_blank());
 }
@@ -121,7 +133,8 @@ TEST_CASE("the single-pass parser agrees with the reference on odd lines", "[lin
                        "g1x1y2e.5f300", "G1 X-.5 Y+3 E1e3", "G1 X1e309", "G1 X 1 Y\t2", "\x01\x02\xff junk",
                        "G1\rX1", "T0", "M104 S210 T1 ; heat", "G92 E0.0", "G1 X12345678901234567890 Y1",
                        "G1 X0.1234567890123 Y1", "  ;  comment only", "", "   ", "G1 X1 Y2 ;; x ; y", "(only)",
-                       "G1 X1 )", "G1 X1 *12 ;c", "N1 G1 X2*99 (x)"};
+                       "G1 X1 )", "G1 X1 *12 ;c", "N1 G1 X2*99 (x)", "(a) (b) ; c", "(a ; b) c", "(a)*12",
+                       "(a (b) c)", "(unclosed", " (x)\t", "(a) G1 X1"};
   for (const char* text : odd) {
     INFO("'" << text << "'");
     CHECK(gctest::compare_with_reference(Line::parse(text), gctest::reference_parse(text)) == "");

@@ -1,3 +1,4 @@
+#include <cmath>
 #include <catch2/catch.hpp>
 
 #include "gcode/core/machine_state.hpp"
@@ -104,6 +105,18 @@ TEST_CASE("arcs: length of I/J and R forms, full circle", "[machine_state][arc]"
   CHECK(m.xy_length == Approx(3.14159265 * 10 / 2));
   m = apply(s, "G2 X0 Y0 R-10");  // negative R: the long way
   CHECK(m.xy_length == Approx(3 * 3.14159265 * 10 / 2));
+}
+
+TEST_CASE("arcs: Marlin's P word adds full turns; a bad P is no arc", "[machine_state][arc]") {
+  gcode::MachineState s;
+  apply(s, "G1 X0 Y0");
+  auto m = apply(s, "G3 X10 Y0 I5 J0 P2 Z1");  // two turns, then the half circle, rising 1 mm
+  CHECK(m.xy_length == Approx(5 * 3.14159265 * 5));
+  CHECK(m.length == Approx(std::hypot(5 * 3.14159265 * 5, 1.0)));
+  m = apply(s, "G2 I-5 J0 P1");  // back to its start: a full circle after one extra turn
+  CHECK(m.xy_length == Approx(2 * 2 * 3.14159265 * 5));
+  m = apply(s, "G2 I-5 J0 P1.5");  // not a whole number: read as the straight move it names
+  CHECK(m.xy_length == 0);
 }
 
 TEST_CASE("malformed moves are ignored, unknown commands are harmless", "[machine_state]") {

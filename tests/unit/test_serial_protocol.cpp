@@ -22,6 +22,19 @@ TEST_CASE("serial checksum is the XOR of every byte before the star", "[serial]"
   CHECK(out == "N12345 G1 X1.5 Y-2 E.3*" + std::to_string(x) + "\n");
 }
 
+TEST_CASE("serial command_for_sending takes paren comments out of the code", "[serial]") {
+  std::string scratch;
+  auto sent = [&](const char* text) { return std::string(command_for_sending(gcode::Line::parse(text), scratch)); };
+  CHECK(sent("G1 X1 (note) Y2") == "G1 X1 Y2");
+  CHECK(sent("G1 X1 (a)(b) Y2 ; c") == "G1 X1 Y2");
+  CHECK(sent("G1 X1(a)Y2") == "G1 X1 Y2");
+  CHECK(sent("N5 G1 X1 (a;b) Y2*12") == "G1 X1");  // the ';' inside starts the line's comment
+  CHECK(sent("G1 X1 Y2 ; plain") == "G1 X1 Y2");
+  CHECK(sent("(only a comment)") == "");
+  CHECK(sent("G1 X1 (unclosed") == "G1 X1");
+  CHECK(sent("M117 Layer 3 (of 40)") == "M117 Layer 3 (of 40)");
+}
+
 TEST_CASE("serial command_for_sending drops an existing number and checksum", "[serial]") {
   CHECK(command_for_sending("G1 X1") == "G1 X1");
   CHECK(command_for_sending("  N17 G1 X1*99") == "G1 X1");

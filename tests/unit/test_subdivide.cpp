@@ -156,6 +156,14 @@ TEST_CASE("arcs: I/J and R forms clockwise and counter-clockwise and full circle
     gctest::SubdivideLimits l;
     CHECK(gctest::check_subdivision("G1 X10 Y0\nG2 I-10 J0\n", out, l).ok());
   }
+  SECTION("Marlin's P turns are cut like the rest of the sweep") {
+    std::string in = "G90\nM83\nG1 X10 Y0 F1800\nG2 I-10 J0 P1 Z0.4 E6.28318 ; two turns\n";
+    std::string out = checked(in, o);
+    // 2 turns of radius 10 are 125.7 mm: at least 252 chords of at most 0.5 mm.
+    CHECK(lines_of(out).size() >= 3 + 252);
+    CHECK(out.find(" P") == std::string::npos);
+    CHECK(out.find("Z0.4") != std::string::npos);
+  }
   SECTION("--arcs keep leaves them alone") {
     SubdivideOptions keep = max_of(0.5);
     keep.split_arcs = false;

@@ -182,6 +182,19 @@ bool read_checksum(const char* p, const char* end, Line& line) {
   return true;
 }
 
+// "(...)" comments and blanks up to the end or a ';' comment: a comment line
+// (RepRap/LinuxCNC style; Marlin reads them with PAREN_COMMENTS). They do
+// not nest: "(a (b) c)" is not one.
+bool only_paren_comments(const char* p, const char* end) {
+  while (p != end && *p == '(') {
+    const void* close = std::memchr(p, ')', static_cast<std::size_t>(end - p));
+    if (close == nullptr) return false;
+    p = static_cast<const char*>(close) + 1;
+    while (p != end && is_space(*p)) ++p;
+  }
+  return p == end || *p == ';';
+}
+
 }  // namespace
 
 // Where the code of a line ends: before its ';' comment and its "*nn"
@@ -211,7 +224,7 @@ Line Line::parse(std::string_view text) {
   const char* const end = p + text.size();
   while (p != end && is_space(*p)) ++p;
   if (p == end) return line;
-  if (*p == ';') {
+  if (*p == ';' || (*p == '(' && only_paren_comments(p, end))) {
     line.comment = std::string_view(p, static_cast<std::size_t>(end - p));
     line.comment_pos = static_cast<std::size_t>(p - text.data());
     return line;

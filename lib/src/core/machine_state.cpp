@@ -91,10 +91,7 @@ void apply_motion(MachineState& s, const Line& line, Move& m) {
   double dx = end[kX] - start[kX], dy = end[kY] - start[kY], dz = end[kZ] - start[kZ];
   m.z_changed = dz != 0;
   if (m.kind == MoveKind::Arc) {
-    double scale = inches ? kInch : 1.0;
-    bool has_ij = line.has('I') || line.has('J');
-    Arc arc = make_arc(start[kX], start[kY], end[kX], end[kY], line.number == 2, has_ij,
-                       line.value_or('I', 0) * scale, line.value_or('J', 0) * scale, line.value_or('R', 0) * scale);
+    Arc arc = make_arc(line, start[kX], start[kY], end[kX], end[kY], inches ? kInch : 1.0);
     m.is_arc_clockwise = line.number == 2;
     if (arc.valid) {
       m.xy_length = arc.length_xy();

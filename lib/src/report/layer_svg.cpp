@@ -360,9 +360,7 @@ void LayerDrawer::line(const TrackedLine& t, Emitter& out) {
     current_.retractions.push_back(static_cast<float>(m.end[kY]));
   }
   if (m.kind == MoveKind::Arc) {
-    Arc arc = make_arc(m.start[kX], m.start[kY], m.end[kX], m.end[kY], m.is_arc_clockwise,
-                       t.line.has('I') || t.line.has('J'), t.line.value_or('I', 0), t.line.value_or('J', 0),
-                       t.line.value_or('R', 0));
+    Arc arc = make_arc(t.line, m.start[kX], m.start[kY], m.end[kX], m.end[kY], t.before.inches ? 25.4 : 1.0);
     if (arc.valid) {
       int steps = std::clamp(static_cast<int>(arc.length_xy() / 0.5), 4, 720);
       double px = m.start[kX], py = m.start[kY];

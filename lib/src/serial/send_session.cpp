@@ -73,7 +73,7 @@ void SendSession::line(const TrackedLine& t, Emitter&) {
     diag_.info(fmt::format("line {}: host command '{}' not sent to the printer", t.raw.number, line.code()));
     return;
   }
-  std::string_view command = command_for_sending(line.code());
+  std::string_view command = command_for_sending(line, scratch_);
   if (command.empty()) return;
   if (line.is_m(110)) {
     diag_.warn(t.raw.number, "M110 not sent: gc-send numbers the lines itself");

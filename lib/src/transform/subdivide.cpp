@@ -167,15 +167,12 @@ bool Subdivider::plan_move(const TrackedLine& t, Plan& plan) {
       return false;
     }
   }
-  bool has_ij = false;
   for (const Word& w : line) {
     if (!w.has_value) return false;
-    if (arc && (w.letter == 'I' || w.letter == 'J' || w.letter == 'R')) {
-      has_ij = has_ij || w.letter != 'R';
-      continue;
-    }
+    // P: Marlin's extra turns, cut like the rest of the sweep.
+    if (arc && (w.letter == 'I' || w.letter == 'J' || w.letter == 'R' || w.letter == 'P')) continue;
     int a = axis_of(w.letter);
-    if (a < 0 && w.letter != 'F') return false;  // P (arc turns), S (laser) ...: not ours to cut
+    if (a < 0 && w.letter != 'F') return false;  // S (laser), T ...: not ours to cut
     for (int i = 0; i < plan.letters; ++i)
       if (plan.order[static_cast<std::size_t>(i)] == w.letter) return false;  // "G1 X1 X2": ambiguous
     plan.order[static_cast<std::size_t>(plan.letters++)] = w.letter;
@@ -212,10 +209,9 @@ bool Subdivider::plan_move(const TrackedLine& t, Plan& plan) {
 
   double pieces = 1;
   if (arc) {
-    double i = line.value_or('I', 0), j = line.value_or('J', 0), r = line.value_or('R', 0);
     const AxisPlan& x = plan.axes[kX];
     const AxisPlan& y = plan.axes[kY];
-    plan.geometry = make_arc(x.start, y.start, x.end, y.end, line.number == 2, has_ij, i, j, r);
+    plan.geometry = make_arc(line, x.start, y.start, x.end, y.end);
     if (!plan.geometry.valid || !std::isfinite(plan.geometry.radius) ||
         plan.geometry.radius * scale > kMaxCoordinate) {
       warn(raw.number, "not a valid arc; passed through unchanged");

@@ -11,6 +11,8 @@
 #include <string>
 #include <string_view>
 
+#include "gcode/core/line.hpp"
+
 namespace gcode::serial {
 
 // XOR of all bytes of `text` (Marlin's and RepRap's line checksum).
@@ -61,5 +63,9 @@ ErrorClass classify_error(std::string_view message);
 // gone, an existing "N123 " prefix and "*71" checksum removed (the sender
 // numbers lines itself).
 std::string_view command_for_sending(std::string_view code);
+// The same for a parsed line, with "(...)" comments inside the code taken
+// out too: "G1 X1 (note) Y2" sends "G1 X1 Y2", never a command cut at its
+// comment. `scratch` holds the text when it had to be rebuilt.
+std::string_view command_for_sending(const Line& line, std::string& scratch);
 
 }  // namespace gcode::serial

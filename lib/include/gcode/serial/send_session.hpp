@@ -52,6 +52,7 @@ class SendSession : private Stage {
   std::uint64_t host_commands_ = 0;
   bool input_done_ = false;
   std::string port_in_;       // a partial line from the printer
+  std::string scratch_;       // a command rebuilt without its paren comments
   int input_watch_ = -1;
   int port_watch_ = -1;
   int interrupts_ = 0;
