@@ -36,21 +36,6 @@ void parse_ramp(const std::string& text, gcode::SpeedOptions& s) {
   s.ramp = true;
 }
 
-// --types names the file does not have: a usage error that lists the names it has.
-void check_types(const std::vector<std::string>& wanted, const std::vector<std::string>& features) {
-  std::string unknown;
-  for (const std::string& w : wanted) {
-    bool found = false;
-    for (const std::string& f : features) found = found || gcode::feature_matches(w, f);
-    if (!found) unknown += (unknown.empty() ? "'" : ", '") + w + "'";
-  }
-  if (unknown.empty()) return;
-  if (features.empty()) throw UsageError("--types " + unknown + ": the file has no ;TYPE: comments");
-  std::string names;
-  for (const std::string& f : features) names += (names.empty() ? "'" : ", '") + f + "'";
-  throw UsageError("--types: no feature " + unknown + " in the file; it has " + names);
-}
-
 std::string seconds(double s) { return fmt::format("{:.1f} s", s); }
 
 // -v: the estimate before and after, per layer of the region and in total.
@@ -85,11 +70,10 @@ int run(Options& o, gcode::cli::Tool& tool, bool diameter_given) {
   gcode::SpeedOptions& s = o.speed;
   gcode::cli::Filter run(o.io);
   gcode::LayerSelection where = run.selection(o.where);
-  std::vector<std::string> types = gcode::split_list(o.where.types);
   if (s.ramp) {
     // The ramp runs across the region's layers: know them before writing.
     gcode::cli::InputScan scan = run.scan();
-    check_types(types, scan.features);
+    gcode::cli::check_types(where.types(), scan.features);
     for (const gcode::LayerInfo& layer : scan.layers)
       if (!where.by_layer() || where.layer_selected(layer)) s.ramp_layers.push_back(layer.index);
   }
@@ -121,16 +105,7 @@ int run(Options& o, gcode::cli::Tool& tool, bool diameter_given) {
     after.emplace();
     run.add(*after);
   }
-  run.write([&] {
-    check_types(types, [&] {
-      std::vector<std::string> names;
-      const gcode::LayerTracker& tracker = run.pipeline().tracker();
-      for (int f = 0; f < tracker.feature_count(); ++f) names.push_back(tracker.feature_name(f));
-      return names;
-    }());
-  });
-  if (where.by_layer() && where.layers_selected() == 0)
-    diag.warn(fmt::format("no layer of {} matches the selection; nothing was changed", run.input().name()));
+  run.write([&] { run.check_selection(where, diag, "changed"); });
   const gcode::SpeedStats& stats = stage.stats();
   report_caps(diag, s, stats);
   if (stats.left_alone > 0) diag.warn(fmt::format("{} moves of the region left at their speed", stats.left_alone));
@@ -201,10 +176,6 @@ int main(int argc, char** argv) {
     if (factor->count() + speed->count() + ramp->count() == 0)
       throw UsageError("give the change: --factor F, --speed MM_S or --ramp F1:F2");
     if (ramp->count() > 0) parse_ramp(o.ramp, s);
-    for (const char* name : {"--layers", "--z-range", "--types"}) {
-      CLI::Option* option = app.get_option(name);
-      if (option->count() > 0 && option->as<std::string>().empty()) throw UsageError(std::string(name) + ": empty");
-    }
     if (restore->count() > 0 && m220->count() == 0) throw UsageError("--m220-restore goes with --m220");
     if (o.m220_restore == "reset") s.m220_restore = gcode::M220Restore::Reset;
     try {

@@ -82,9 +82,7 @@ int main(int argc, char** argv) {
     if (selected) where = run.selection(o.where);
     gcode::Subdivider subdivider(o.split, run.pipeline().precision(), &diag, selected ? &where : nullptr);
     run.add(subdivider);
-    run.write();
-    if (where.by_layer() && where.layers_selected() == 0)
-      diag.warn(fmt::format("no layer of {} matches the selection; nothing was split", run.input().name()));
+    run.write([&] { run.check_selection(where, diag, "split"); });
     const gcode::SubdivideStats& s = subdivider.stats();
     diag.info(fmt::format("{} lines in, {} moves cut into {} pieces ({} arcs), {} bytes out", s.lines, s.moves_split,
                           s.pieces, s.arcs, run.output()->bytes_written()));

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "gcode/core/e_mode.hpp"
+#include "gcode/core/feature.hpp"
 #include "gcode/core/file_ends.hpp"
 
 namespace gcode::cli {
@@ -90,6 +91,29 @@ LayerSelection Filter::selection(const SelectionText& text) {
   if (s.needs_total()) s.set_total(count_layers());
   s.bind(pipeline_.tracker());
   return s;
+}
+
+void check_types(const std::vector<std::string>& wanted, const std::vector<std::string>& features) {
+  std::string unknown;
+  for (const std::string& w : wanted) {
+    bool found = false;
+    for (const std::string& f : features) found = found || feature_matches(w, f);
+    if (!found) unknown += (unknown.empty() ? "'" : ", '") + w + "'";
+  }
+  if (unknown.empty()) return;
+  if (features.empty()) throw UsageError("--types " + unknown + ": the file has no ;TYPE: comments");
+  std::string names;
+  for (const std::string& f : features) names += (names.empty() ? "'" : ", '") + f + "'";
+  throw UsageError("--types: no feature " + unknown + " in the file; it has " + names);
+}
+
+void Filter::check_selection(const LayerSelection& where, Diagnostics& diag, std::string_view done) {
+  const LayerTracker& tracker = pipeline_.tracker();
+  std::vector<std::string> features;
+  for (int f = 0; f < tracker.feature_count(); ++f) features.push_back(tracker.feature_name(f));
+  check_types(where.types(), features);
+  if (where.by_layer() && where.layers_selected() == 0)
+    diag.warn("no layer of " + input_.name() + " matches the selection; nothing was " + std::string(done));
 }
 
 PrintArea Filter::print_area() {

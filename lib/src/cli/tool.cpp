@@ -73,14 +73,21 @@ void Tool::add_filter_options(FilterOptions& o, unsigned parts) {
 }
 
 void Tool::add_selection(SelectionText& text, const std::string& verb) {
-  app_.add_option("--layers", text.layers, verb + " these layers (5, 5-9, 5-, -3 = the last three, 5,7,9-12; first layer = 1)")
-      ->type_name("RANGE");
-  app_.add_option("--z-range", text.z_range, verb + " layers whose Z lies in Z1:Z2 (either side may be empty)")
-      ->type_name("Z1:Z2");
-  app_.add_option("--types", text.types,
-                  verb + " these ;TYPE: features, comma-separated, any slicer's spelling (WALL-OUTER, \"External perimeter\")")
-      ->type_name("LIST");
-  check([&text] { LayerSelection::parse(text); });
+  CLI::Option* options[] = {
+      app_.add_option("--layers", text.layers,
+                      verb + " these layers (5, 5-9, 5-, -3 = the last three, 5,7,9-12; first layer = 1)")
+          ->type_name("RANGE"),
+      app_.add_option("--z-range", text.z_range, verb + " layers whose Z lies in Z1:Z2 (either side may be empty)")
+          ->type_name("Z1:Z2"),
+      app_.add_option("--types", text.types,
+                      verb + " these ;TYPE: features, comma-separated, any slicer's spelling (WALL-OUTER, \"External perimeter\")")
+          ->type_name("LIST")};
+  check([&text, options] {
+    // "--layers ''" (an unset shell variable) is a mistake, not "everything".
+    for (CLI::Option* option : options)
+      if (option->count() > 0 && option->as<std::string>().empty()) throw UsageError(option->get_name() + ": empty");
+    LayerSelection::parse(text);
+  });
 }
 
 int Tool::usage_error(const std::string& message) const {

@@ -51,6 +51,11 @@ class Filter {
   // Parses a selection and, when a range counts from the end, counts the
   // layers first. Throws UsageError when it does not parse.
   LayerSelection selection(const SelectionText& text);
+  // After the run, what a selection found: --types names that matched no
+  // feature of the input are a usage error that lists the names it has;
+  // --layers/--z-range that chose no layer is a warning ("no layer of FILE
+  // matches the selection; nothing was <done>").
+  void check_selection(const LayerSelection& where, Diagnostics& diag, std::string_view done);
   // What the file says about the printer (bed, height, the print's box): a
   // regular file is read at both ends (PrusaSlicer writes its config last);
   // from a pipe only the header, which stays buffered for the run.
@@ -86,6 +91,10 @@ class Filter {
   std::optional<GcodeWriter> writer_;
   std::function<bool()> done_;
 };
+
+// --types names (`wanted`) that match none of a file's ;TYPE: names
+// (`features`): a UsageError naming them and listing the file's names.
+void check_types(const std::vector<std::string>& wanted, const std::vector<std::string>& features);
 
 // Counts the layers of everything `fd` delivers (no output); `e_relative`:
 // 1 or 0 for a file that never sets the E mode, -1 to leave it to the file.

@@ -1,0 +1,187 @@
+// The conventions every tool keeps (design.md, "Conventions every tool
+// follows"), checked the same way on every tool: the same --version, usage
+// errors with exit status 2 in one message format, -i that replaces the file
+// only when the run succeeded, CRLF kept on the lines a tool inserts, and a
+// closed output pipe that ends a tool quietly. The tools come from tools/*;
+// a new one fails here until it is given a row below.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "test_support.hpp"
+
+namespace fs = std::filesystem;
+using gctest::quote;
+using gctest::read_file;
+using gctest::run;
+
+namespace {
+
+// How to make a filter change a file (inserting lines) and how to make it fail
+// after it has started reading (an input error or a check of the whole input).
+struct FilterCase {
+  std::string changing;    // options that insert or replace lines
+  std::string failing;     // options the input cannot meet
+  bool in_place = true;    // takes -i/--in-place
+  bool old_on_stdin = false;  // gc-relayer: FILE is the new print, the old one comes on stdin
+};
+
+const std::map<std::string, FilterCase>& filters() {
+  static const std::map<std::string, FilterCase> cases = {
+      {"gc-layers", {"--extract 2-5", "--extract 500"}},
+      {"gc-pause-at", {"--before-layer 5", "--before-layer 500"}},
+      {"gc-subdivide", {"--max 0.5", "--max 0.5 --types no-such-feature"}},
+      {"gc-speedup", {"--factor 2 --layers 2-4", "--factor 2 --types no-such-feature"}},
+      {"gc-swap-layer", {"--repeat 3", "--repeat 500"}},
+      {"gc-relayer", {"--at-z 5", "--at-z 500", false, true}},
+  };
+  return cases;
+}
+
+// Tools that do not write G-code (a sender and a printer model): they keep
+// the conventions of options, messages and versions only.
+const std::vector<std::string>& others() {
+  static const std::vector<std::string> names = {"gc-send", "gc-virtual-printer"};
+  return names;
+}
+
+std::vector<std::string> tool_names() {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(fs::path(GC_FIXTURES_DIR) / ".." / ".." / "tools"))
+    if (entry.is_directory()) names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+const char* kFixture = "prusa_cube_0.2_mk3s_rel_zhop.gcode";
+
+std::string crlf(const std::string& text) {
+  std::string out;
+  out.reserve(text.size() + text.size() / 20);
+  for (char c : text) {
+    if (c == '\n') out += '\r';
+    out += c;
+  }
+  return out;
+}
+
+// The command that runs `tool` with `options` on `path`.
+std::string command(const std::string& tool, const FilterCase& c, const std::string& options, const std::string& path) {
+  std::string line = gctest::tool_command(tool, options + " " + quote(path));
+  if (c.old_on_stdin) line += " <" + quote(path);
+  return line;
+}
+
+std::vector<std::string> files_in(const std::string& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+}  // namespace
+
+TEST_CASE("every tool is covered by the conventions tests", "[conventions]") {
+  for (const std::string& tool : tool_names()) {
+    INFO(tool << ": give it a row in filters() or others() of test_conventions.cpp");
+    bool known = filters().count(tool) > 0 || std::count(others().begin(), others().end(), tool) > 0;
+    CHECK(known);
+  }
+}
+
+TEST_CASE("every tool prints the project's version", "[conventions]") {
+  for (const std::string& tool : tool_names()) {
+    gctest::RunResult r = run(gctest::tool_command(tool, "--version"));
+    INFO(tool);
+    CHECK(r.status == 0);
+    CHECK(r.out == tool + " " + GC_PROJECT_VERSION + "\n");
+  }
+}
+
+TEST_CASE("every tool answers a usage error with exit status 2 and one message in one format", "[conventions]") {
+  for (const std::string& tool : tool_names()) {
+    std::regex format("^" + tool + ": [^\n]+ \\(see " + tool + " --help\\)\n$");
+    gctest::RunResult r = run(gctest::tool_command(tool, "--no-such-option"));
+    INFO(tool << ": " << r.err);
+    CHECK(r.status == 2);
+    CHECK(std::regex_match(r.err, format));
+    CHECK(r.out.empty());
+  }
+  for (const auto& [tool, c] : filters()) {
+    if (!c.in_place) continue;
+    // -i with standard input has no file to rewrite.
+    std::regex format("^" + tool + ": [^\n]+ \\(see " + tool + " --help\\)\n$");
+    gctest::RunResult r = run(gctest::tool_command(tool, c.changing + " -i -"), read_file(gctest::fixture_path(kFixture)));
+    INFO(tool << ": " << r.err);
+    CHECK(r.status == 2);
+    CHECK(std::regex_match(r.err, format));
+  }
+}
+
+TEST_CASE("-i replaces the file only when the run succeeded and leaves no temp file", "[conventions]") {
+  const std::string original = read_file(gctest::fixture_path(kFixture));
+  for (const auto& [tool, c] : filters()) {
+    if (!c.in_place) continue;
+    INFO(tool);
+    std::string dir = gctest::temp_dir();
+    std::string path = dir + "/part.gcode";
+    gctest::write_file(path, original);
+
+    gctest::RunResult failed = run(command(tool, c, c.failing + " -i", path));
+    INFO(failed.err);
+    CHECK((failed.status == 1 || failed.status == 2));
+    CHECK(read_file(path) == original);
+    CHECK(files_in(dir) == std::vector<std::string>{"part.gcode"});
+
+    gctest::RunResult expected = run(command(tool, c, c.changing, path));
+    REQUIRE(expected.status == 0);
+    gctest::RunResult done = run(command(tool, c, c.changing + " -i", path));
+    CHECK(done.status == 0);
+    CHECK(done.out.empty());
+    CHECK(read_file(path) == expected.out);
+    CHECK(read_file(path) != original);
+    CHECK(files_in(dir) == std::vector<std::string>{"part.gcode"});
+  }
+}
+
+TEST_CASE("every filter writes the lines it inserts with the input's CRLF endings", "[conventions]") {
+  const std::string original = crlf(read_file(gctest::fixture_path(kFixture)));
+  for (const auto& [tool, c] : filters()) {
+    INFO(tool);
+    std::string path = gctest::temp_dir() + "/part.gcode";
+    gctest::write_file(path, original);
+    gctest::RunResult r = run(command(tool, c, c.changing, path));
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    CHECK(r.out != original);
+    std::size_t bare = 0, lines = 0;
+    for (std::size_t i = 0; i < r.out.size(); ++i) {
+      if (r.out[i] != '\n') continue;
+      ++lines;
+      if (i == 0 || r.out[i - 1] != '\r') ++bare;
+    }
+    CHECK(lines > 1000);
+    CHECK(bare == 0);
+  }
+}
+
+TEST_CASE("every filter ends quietly when its output pipe closes early", "[conventions]") {
+  // Several times the pipe's 64 KiB, so the filter is still writing when head exits.
+  const std::string path = gctest::fixture_path("prusa_tshape_0.2_support_mk3s_brim.gcode");
+  for (const auto& [tool, c] : filters()) {
+    INFO(tool);
+    std::string dir = gctest::temp_dir();
+    std::string line = "bash -c " + quote("set -o pipefail; " + command(tool, c, c.changing, path) + " 2>" +
+                                          quote(dir + "/err") + " | head -c 100 >/dev/null; echo $?");
+    gctest::RunResult r = run(line);
+    REQUIRE(r.status == 0);
+    // Killed by SIGPIPE as cat is (141), or done before it came (0): never an error message.
+    CHECK((r.out == "141\n" || r.out == "0\n"));
+    CHECK(read_file(dir + "/err").empty());
+  }
+}
