@@ -51,9 +51,10 @@ class Filter {
   // Parses a selection and, when a range counts from the end, counts the
   // layers first. Throws UsageError when it does not parse.
   LayerSelection selection(const SelectionText& text);
-  // What the file says about the printer (bed, height, the print's box): a
-  // regular file is read at both ends (PrusaSlicer writes its config last);
-  // from a pipe only the header, which stays buffered for the run.
+  // What the slicer's SLIC3R_* environment (a post-processing hook) and then
+  // the file say about the printer (bed, height, the print's box, filament,
+  // retraction): a regular file is read at both ends (PrusaSlicer writes its
+  // config last); from a pipe only the header, which stays buffered for the run.
   PrintArea print_area();
 
   // The E mode of a file that never says M82/M83 (--e-mode, else guessed
