@@ -1,0 +1,49 @@
+# What `cmake --install` puts where, and the Debian packages CPack makes of it.
+#
+#   component "tools" (the default): bin/gc-*, share/man/man1/gc-*.1,
+#     share/bash-completion/completions/gc-*          -> gcode-tools_<v>_<arch>.deb
+#   component "dev": include/gcode/**, lib/libgcode.a, lib/cmake/gcode-tools/
+#     (find_package(gcode-tools) gives the target gcode-tools::gcode)
+#                                                     -> gcode-tools-dev_<v>_<arch>.deb
+include(CMakePackageConfigHelpers)
+set(GCODE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/gcode-tools)
+
+install(TARGETS gcode EXPORT gcode-tools-targets
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev
+  INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(DIRECTORY lib/include/gcode DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT dev)
+install(FILES ${CMAKE_BINARY_DIR}/lib/generated/gcode/version.hpp
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/gcode COMPONENT dev)
+install(EXPORT gcode-tools-targets NAMESPACE gcode-tools:: DESTINATION ${GCODE_CMAKE_DIR} COMPONENT dev)
+configure_package_config_file(cmake/gcode-toolsConfig.cmake.in
+  ${CMAKE_BINARY_DIR}/cmake/gcode-toolsConfig.cmake INSTALL_DESTINATION ${GCODE_CMAKE_DIR})
+write_basic_package_version_file(${CMAKE_BINARY_DIR}/cmake/gcode-toolsConfigVersion.cmake
+  COMPATIBILITY SameMinorVersion)
+install(FILES ${CMAKE_BINARY_DIR}/cmake/gcode-toolsConfig.cmake ${CMAKE_BINARY_DIR}/cmake/gcode-toolsConfigVersion.cmake
+  DESTINATION ${GCODE_CMAKE_DIR} COMPONENT dev)
+
+set(CPACK_GENERATOR DEB)
+set(CPACK_PACKAGE_NAME gcode-tools)
+set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
+set(CPACK_PACKAGE_CONTACT "gcode-tools developers <gcode-tools@localhost>")
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "Unix filters for FDM 3D-printer G-code")
+set(CPACK_PACKAGE_DESCRIPTION
+  "Small, fast, lossless filters for FDM printer G-code that chain in shell pipelines,\n slicer post-processing hooks and Makefile print recipes: layers, pauses,\n subdivision, speed, layer splicing, and a serial sender with a virtual printer.")
+set(CPACK_DEB_COMPONENT_INSTALL ON)
+set(CPACK_COMPONENTS_ALL tools dev)
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_PACKAGE_SECTION utils)
+set(CPACK_DEBIAN_TOOLS_PACKAGE_NAME gcode-tools)
+set(CPACK_DEBIAN_TOOLS_PACKAGE_SECTION utils)
+# The shared libraries the tools load (fmt, RE2, stb, the C++ runtime), as
+# dpkg-shlibdeps finds them in the binaries: never a hand-kept list.
+set(CPACK_DEBIAN_TOOLS_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_TOOLS_PACKAGE_RECOMMENDS "bash-completion")
+set(CPACK_DEBIAN_TOOLS_PACKAGE_SUGGESTS "cura-engine | prusa-slicer")
+set(CPACK_DEBIAN_DEV_PACKAGE_NAME gcode-tools-dev)
+set(CPACK_DEBIAN_DEV_PACKAGE_SECTION libdevel)
+# The static library's own dependencies and the headers its headers include.
+set(CPACK_DEBIAN_DEV_PACKAGE_DEPENDS "libfmt-dev, libre2-dev, libcli11-dev, libstb-dev, pkg-config")
+set(CPACK_COMPONENT_TOOLS_DESCRIPTION "${CPACK_PACKAGE_DESCRIPTION_SUMMARY}")
+set(CPACK_COMPONENT_DEV_DESCRIPTION "libgcode, the library under gcode-tools: headers, static library, CMake package")
+include(CPack)
