@@ -157,3 +157,11 @@ TEST_CASE("every tool answers a usage error alike: exit 2, its name, a pointer t
     CHECK(r.out.empty());
   }
 }
+
+TEST_CASE("README's table of tools has a row for every tool, linking its man page", "[consistency]") {
+  std::string readme = gctest::read_file(GC_README);
+  for (const std::string& tool : tools()) {
+    INFO("README.md lacks the row \"| [" << tool << "](man/" << tool << ".1) | ... |\"");
+    CHECK(readme.find("\n| [" + tool + "](man/" + tool + ".1) | ") != std::string::npos);
+  }
+}
