@@ -26,9 +26,8 @@ set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME gcode-tools)
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
 set(CPACK_PACKAGE_CONTACT "gcode-tools developers <gcode-tools@localhost>")
-set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "Unix filters for FDM 3D-printer G-code")
-set(CPACK_PACKAGE_DESCRIPTION
-  "Small, fast, lossless filters for FDM printer G-code that chain in shell pipelines,\n slicer post-processing hooks and Makefile print recipes: layers, pauses,\n subdivision, speed, layer splicing, and a serial sender with a virtual printer.")
+set(GCODE_DESCRIPTION
+  "Small, fast, lossless filters for FDM printer G-code that chain in shell pipelines,\nslicer post-processing hooks and Makefile print recipes: layers, pauses,\nsubdivision, speed, layer splicing, and a serial sender with a virtual printer.")
 set(CPACK_DEB_COMPONENT_INSTALL ON)
 set(CPACK_COMPONENTS_ALL tools dev)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
@@ -44,6 +43,9 @@ set(CPACK_DEBIAN_DEV_PACKAGE_NAME gcode-tools-dev)
 set(CPACK_DEBIAN_DEV_PACKAGE_SECTION libdevel)
 # The static library's own dependencies and the headers its headers include.
 set(CPACK_DEBIAN_DEV_PACKAGE_DEPENDS "libfmt-dev, libre2-dev, libcli11-dev, libstb-dev, pkg-config")
-set(CPACK_COMPONENT_TOOLS_DESCRIPTION "${CPACK_PACKAGE_DESCRIPTION_SUMMARY}")
-set(CPACK_COMPONENT_DEV_DESCRIPTION "libgcode, the library under gcode-tools: headers, static library, CMake package")
+# Each package's Description field: a summary line, then the long text (no
+# CPACK_PACKAGE_DESCRIPTION_SUMMARY: CPack would put it before both).
+set(CPACK_DEBIAN_TOOLS_DESCRIPTION "Unix filters for FDM 3D-printer G-code\n${GCODE_DESCRIPTION}")
+set(CPACK_DEBIAN_DEV_DESCRIPTION
+  "libgcode, the library under gcode-tools\nThe headers, the static library and the CMake package (find_package(gcode-tools))\nfor programs built on the gcode-tools streaming G-code library.")
 include(CPack)
