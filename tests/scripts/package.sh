@@ -3,6 +3,7 @@
 #   gcode-tools: every tool of the build, its man page and completion, and a
 #     Depends that names the package of every shared library the tools load
 #     (found with ldd and dpkg -S, not from a list);
+#   unpacked into a scratch root (dpkg-deb -x), its tools run;
 #   gcode-tools-dev: the headers, libgcode.a and the CMake package, depending
 #     on the -dev packages its headers and link line need.
 # usage: package.sh BUILD_DIR TOOL...
@@ -66,6 +67,13 @@ for dep in libfmt-dev libre2-dev libcli11-dev libstb-dev; do
 done
 check
 if grep -q '^./usr/include/' "$work/tools.files"; then fail "headers in the tools package"; fi
+
+# Unpacked into a scratch root, the packaged tools run.
+dpkg-deb -x "$tools_deb" "$work/root"
+for tool in "$@"; do
+  check
+  [ "$("$work/root/usr/bin/$tool" --version)" = "$("$build/bin/$tool" --version)" ] || fail "the packaged $tool does not run"
+done
 
 echo "package: $checks checks over $# tools, $failures failed"
 [ "$failures" -eq 0 ]
