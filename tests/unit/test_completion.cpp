@@ -46,8 +46,10 @@ TEST_CASE("completion: options, values, choices and files from the definitions",
   CHECK(e->choices == std::vector<std::string>{"auto", "relative", "absolute"});
   CHECK_FALSE(e->file_value);
   CHECK(entry(all, "--shape")->choices == std::vector<std::string>{"flat", "cylinder"});
-  CHECK(entry(all, "--port")->choices.empty());  // a path or a spec, not a list
+  // A path, or the word "virtual" (its options after it are not completed).
+  CHECK(entry(all, "--port")->choices == std::vector<std::string>{"virtual"});
   CHECK(entry(all, "--port")->file_value);
+  CHECK(entry(all, "--max")->choices.empty());
   CHECK(entry(all, "--max")->takes_value);
   CHECK_FALSE(entry(all, "--max")->file_value);
   CHECK_FALSE(entry(all, "--travel")->takes_value);
@@ -58,7 +60,9 @@ TEST_CASE("completion: options, values, choices and files from the definitions",
   CHECK(script.find("complete -o filenames -F _gc_test gc-test\n") != std::string::npos);
   CHECK(script.find("    --e-mode)\n        COMPREPLY=($(compgen -W 'auto relative absolute' -- \"$cur\")); return 0 ;;") !=
         std::string::npos);
-  CHECK(script.find("-o|--output|--port)\n        COMPREPLY=($(compgen -f") != std::string::npos);
+  CHECK(script.find("-o|--output)\n        COMPREPLY=($(compgen -f") != std::string::npos);
+  CHECK(script.find("--port)\n        COMPREPLY=($(compgen -W 'virtual' -- \"$cur\") $(compgen -f -- \"$cur\")); return 0 ;;") !=
+        std::string::npos);
   CHECK(script.find("--max)\n        return 0 ;;") != std::string::npos);
   CHECK(script.find("--secret") == std::string::npos);
   // FILE: file names where no option is being completed.

@@ -27,23 +27,38 @@ std::vector<std::string> words_of(std::string_view list, char separator) {
   return out;
 }
 
+// Values that name a file: FILE, FILE[:LAYERS], PATH, IMAGE, DIR, STL, GCODE (a file or text) ...
+bool names_file(std::string_view type) {
+  for (const char* word : {"FILE", "PATH", "DIR", "IMAGE", "PICTURE", "STL", "LOG", "GCODE"})
+    if (type.find(word) != std::string_view::npos) return true;
+  return false;
+}
+
 // The values an option lists: "MODE:{auto,relative,absolute}" (what
-// CLI::IsMember adds to the type name) or a type name that is the list
-// itself, "x|y|z|cylinder|sphere" (not "PATH|virtual[:OPTS]").
+// CLI::IsMember adds to the type name), or a type name that is the list
+// itself, "x|y|z|cylinder|sphere", where a file may be one alternative:
+// "PATH|virtual[:OPTS]" lists "virtual" (and the file names).
 std::vector<std::string> listed_choices(const std::string& type) {
   std::size_t open = type.find('{');
   std::size_t close = type.find('}', open);
   if (open != std::string::npos && close != std::string::npos)
     return words_of(std::string_view(type).substr(open + 1, close - open - 1), ',');
-  std::vector<std::string> alternatives = words_of(type, '|');
-  return alternatives.size() >= 2 ? alternatives : std::vector<std::string>{};
-}
-
-// Values that name a file: FILE, FILE[:LAYERS], PATH, IMAGE, DIR, STL, GCODE (a file or text) ...
-bool names_file(const std::string& type) {
-  for (const char* word : {"FILE", "PATH", "DIR", "IMAGE", "PICTURE", "STL", "LOG", "GCODE"})
-    if (type.find(word) != std::string::npos) return true;
-  return false;
+  std::vector<std::string> words;
+  bool file = false;
+  std::string_view list(type);
+  while (!list.empty()) {
+    std::size_t end = std::min(list.find('|'), list.size());
+    std::string_view item = list.substr(0, end);
+    item = item.substr(0, item.find('['));  // "virtual[:OPTS]": the word before its options
+    if (names_file(item) && std::none_of(item.begin(), item.end(), [](char c) { return c >= 'a' && c <= 'z'; }))
+      file = true;
+    else if (plain_word(item))
+      words.emplace_back(item);
+    else
+      return {};
+    list.remove_prefix(std::min(list.size(), end + 1));
+  }
+  return words.size() >= 2 || (file && !words.empty()) ? words : std::vector<std::string>{};
 }
 
 std::string joined(const std::vector<std::string>& words, const char* between) {
@@ -95,8 +110,8 @@ std::string bash_completion(const std::string& program, const std::vector<Comple
     if (!e.takes_value) continue;
     std::string pattern = joined(e.names, "|");
     if (!e.choices.empty())
-      choices += "    " + pattern + ")\n        COMPREPLY=($(compgen -W '" + joined(e.choices, " ") +
-                 "' -- \"$cur\")); return 0 ;;\n";
+      choices += "    " + pattern + ")\n        COMPREPLY=($(compgen -W '" + joined(e.choices, " ") + "' -- \"$cur\")" +
+                 (e.file_value ? " $(compgen -f -- \"$cur\")" : "") + "); return 0 ;;\n";
     else if (e.file_value)
       files.push_back(pattern);
     else
