@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `cmake --install` into a temporary prefix, then use it as a user would:
 #   - every tool the build defines is in bin/ and runs from there (same
-#     --version as the build), with its man page and bash completion;
+#     --version as the build), with its man page and bash completion (which
+#     completes, sourced in bash: tests/scripts/completion.sh);
 #   - every installed man page renders with `groff -man -ww -z` without a
 #     warning (what `man -l` shows);
 #   - a pipeline of installed tools works on the example file;
@@ -34,6 +35,11 @@ for path in "$prefix"/bin/*; do
   name=$(basename "$path")
   printf '%s\n' "$@" | grep -qx -- "$name" || fail "bin/$name is installed but is no tool of the build"
 done
+
+# The installed completions complete the installed tools.
+check
+bash "$(dirname "$0")/completion.sh" "$prefix/share/bash-completion/completions" "$prefix/bin" "$@" >"$work/completion.log" 2>&1 ||
+  { cat "$work/completion.log" >&2; fail "the installed bash completions"; }
 
 for page in "$prefix"/share/man/man1/*.1; do
   check
