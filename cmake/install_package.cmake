@@ -15,6 +15,36 @@ install(DIRECTORY lib/include/gcode DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMP
 install(FILES ${CMAKE_BINARY_DIR}/lib/generated/gcode/version.hpp
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/gcode COMPONENT dev)
 install(EXPORT gcode-tools-targets NAMESPACE gcode-tools:: DESTINATION ${GCODE_CMAKE_DIR} COMPONENT dev)
+# libgcode links pkg-config imported targets (PkgConfig::RE2, PkgConfig::STB,
+# whatever a new piece adds with pkg_check_modules): the exported target
+# names them, so the package config defines each again, without a list kept
+# by hand: as it was found here (include directories, the libraries'
+# absolute paths) where this scope sees the target, else by pkg-config
+# again, the module named as the target in lower case (PkgConfig::STB: stb).
+set(GCODE_PKGCONFIG_TARGETS "")
+get_target_property(gcode_links gcode LINK_LIBRARIES)
+foreach(lib IN LISTS gcode_links)
+  if(NOT lib MATCHES "^PkgConfig::(.+)$")
+    continue()
+  endif()
+  set(prefix ${CMAKE_MATCH_1})
+  string(APPEND GCODE_PKGCONFIG_TARGETS "if(NOT TARGET ${lib})\n")
+  if(TARGET ${lib})
+    string(APPEND GCODE_PKGCONFIG_TARGETS "  add_library(${lib} INTERFACE IMPORTED)\n")
+    foreach(property INTERFACE_INCLUDE_DIRECTORIES INTERFACE_LINK_LIBRARIES INTERFACE_COMPILE_OPTIONS
+                     INTERFACE_LINK_OPTIONS INTERFACE_LINK_DIRECTORIES)
+      get_target_property(value ${lib} ${property})
+      if(value)
+        string(APPEND GCODE_PKGCONFIG_TARGETS "  set_property(TARGET ${lib} PROPERTY ${property} \"${value}\")\n")
+      endif()
+    endforeach()
+  else()
+    string(TOLOWER ${prefix} module)
+    string(APPEND GCODE_PKGCONFIG_TARGETS "  find_dependency(PkgConfig)\n"
+                                          "  pkg_check_modules(${prefix} REQUIRED IMPORTED_TARGET ${module})\n")
+  endif()
+  string(APPEND GCODE_PKGCONFIG_TARGETS "endif()\n")
+endforeach()
 configure_package_config_file(cmake/gcode-toolsConfig.cmake.in
   ${CMAKE_BINARY_DIR}/cmake/gcode-toolsConfig.cmake INSTALL_DESTINATION ${GCODE_CMAKE_DIR})
 write_basic_package_version_file(${CMAKE_BINARY_DIR}/cmake/gcode-toolsConfigVersion.cmake
