@@ -78,4 +78,5 @@ set(CPACK_DEBIAN_DEV_PACKAGE_DEPENDS "libfmt-dev, libre2-dev, libcli11-dev, libs
 set(CPACK_DEBIAN_TOOLS_DESCRIPTION "Unix filters for FDM 3D-printer G-code\n${GCODE_DESCRIPTION}")
 set(CPACK_DEBIAN_DEV_DESCRIPTION
   "libgcode, the library under gcode-tools\nThe headers, the static library and the CMake package (find_package(gcode-tools))\nfor programs built on the gcode-tools streaming G-code library.")
+set(CPACK_PRE_BUILD_SCRIPTS ${CMAKE_CURRENT_LIST_DIR}/cpack_gzip_man.cmake)
 include(CPack)

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # CPack's Debian packages, checked with dpkg-deb as a packager would:
-#   gcode-tools: every tool of the build, its man page and completion, and a
+#   gcode-tools: every tool of the build, its man page (gzip'd, as Debian
+#     wants it) and completion, and a
 #     Depends that names the package of every shared library the tools load
 #     (found with ldd and dpkg -S, not from a list);
 #   unpacked into a scratch root (dpkg-deb -x), its tools run;
@@ -38,7 +39,7 @@ owner() {
 }
 
 for tool in "$@"; do
-  for want in "./usr/bin/$tool" "./usr/share/man/man1/$tool.1" "./usr/share/bash-completion/completions/$tool"; do
+  for want in "./usr/bin/$tool" "./usr/share/man/man1/$tool.1.gz" "./usr/share/bash-completion/completions/$tool"; do
     check
     grep -qx -- "$want" "$work/tools.files" || fail "gcode-tools lacks $want"
   done
@@ -68,8 +69,13 @@ done
 check
 if grep -q '^./usr/include/' "$work/tools.files"; then fail "headers in the tools package"; fi
 
-# Unpacked into a scratch root, the packaged tools run.
+# Unpacked into a scratch root, the packaged tools run and the pages render.
 dpkg-deb -x "$tools_deb" "$work/root"
+for page in "$work"/root/usr/share/man/man1/*.1.gz; do
+  check
+  warnings=$(zcat "$page" | groff -man -ww -z 2>&1) || fail "groff failed on the packaged $(basename "$page")"
+  [ -z "$warnings" ] || fail "the packaged $(basename "$page"): groff warns: $warnings"
+done
 for tool in "$@"; do
   check
   [ "$("$work/root/usr/bin/$tool" --version)" = "$("$build/bin/$tool" --version)" ] || fail "the packaged $tool does not run"
