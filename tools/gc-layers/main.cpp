@@ -23,7 +23,7 @@ struct Options {
   std::string z_range;
   int where = 0;
   double density = 1.24;
-  double filament_diameter = 1.75;
+  double filament_diameter = 0;  // 0: the slicer's (environment or file), else 1.75
   // --time, --svg, --svg-sheet
   bool time = false;
   std::string profile;
@@ -52,8 +52,8 @@ void write_pictures(const Options& o, gcode::LayerDrawer& drawer, const gcode::L
   svg.size_px = o.svg_size;
   const gcode::LayerTracker& tracker = run.pipeline().tracker();
   for (int i = 0; i < tracker.feature_count(); ++i) svg.feature_names.push_back(tracker.feature_name(i));
-  gcode::PrintArea area;
-  if (gcode::scan_file_limits(run.input().fd(), area) && area.has_bed) svg.bed = area.bed.outline();
+  gcode::PrintArea area = gcode::printer_facts(run.input().fd());
+  if (area.has_bed) svg.bed = area.bed.outline();
   for (gcode::LayerDrawing& d : drawings) {
     auto i = static_cast<std::size_t>(d.layer - 1);
     d.seconds = i < times.layers.size() ? times.layers[i] : -1;
@@ -80,8 +80,12 @@ void check_has_layers(const gcode::LayerTable& table, gcode::cli::Filter& run) {
   if (table.layers().empty()) throw InputError(run.input().name() + ": no extrusion found (is this a print file?)");
 }
 
-int run(const Options& o, gcode::Diagnostics& diag) {
+int run(Options& o, gcode::Diagnostics& diag) {
   gcode::cli::Filter run(o.io);
+  if (o.filament_diameter == 0) {
+    gcode::PrintArea printer = gcode::printer_facts(run.input().fd());
+    o.filament_diameter = printer.has_filament_diameter ? printer.filament_diameter : 1.75;
+  }
   std::optional<gcode::LayerRange> range, picture_range;
   std::optional<gcode::ZRange> zr;
   if (!o.extract.empty()) range = gcode::LayerRange::parse(o.extract);
@@ -171,7 +175,7 @@ int main(int argc, char** argv) {
       ->check(gcode::cli::positive());
   app.add_option("--density", o.density, "Filament density in g/cm3 for the mass (default PLA 1.24)")
       ->check(gcode::cli::positive());
-  app.add_option("--filament-diameter", o.filament_diameter, "Filament diameter in mm (default 1.75)")
+  app.add_option("--filament-diameter", o.filament_diameter, "Filament diameter in mm (default: the slicer's, else 1.75)")
       ->check(gcode::cli::positive());
   app.add_flag("--time", o.time,
                "Add the estimated print time per layer and cumulative (h:mm:ss), and the total; "

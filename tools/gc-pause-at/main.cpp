@@ -16,7 +16,7 @@ struct Options {
   gcode::cli::FilterOptions io;
   std::string before_layer, after_layer, heights, bed, park, method = "M0", before, after;
   int every = 0;
-  bool dry_run = false, no_heat_wait = false;
+  bool dry_run = false, no_heat_wait = false, retract_given = false;
   double max_z = 0, standby = 0;
   gcode::PauseConfig pause;
   gcode::PauseTriggers where;
@@ -74,6 +74,9 @@ gcode::ParkRules park_rules(const Options& o, gcode::cli::Filter& run, gcode::Pa
     park.area.max_z = o.max_z;
   }
   if (park.area.has_max_z) config.max_z = park.area.max_z;
+  // The slicer's own retraction, when it runs this as its post-processing
+  // script (SLIC3R_RETRACT_LENGTH).
+  if (!o.retract_given && park.area.has_retract_length) config.retract = park.area.retract_length;
   if (config.max_z > 0 && config.min_park_z > config.max_z)
     throw gcode::cli::InputError("--min-park-z is above the printer's height");
   o.where.check_heights(park.area);
@@ -149,8 +152,9 @@ int main(int argc, char** argv) {
       ->type_name("METHOD")->capture_default_str()->group(pause);
   auto* dwell = app.add_option("--dwell", c.dwell_seconds, "Seconds to wait with --method G4")
                     ->type_name("SECONDS")->capture_default_str()->check(positive)->group(pause);
-  app.add_option("--retract", c.retract, "Retract mm before parking (0 = none; firmware G10 if the file uses it)")
-      ->type_name("MM")->capture_default_str()->check(non_negative)->group(pause);
+  auto* retract = app.add_option("--retract", c.retract,
+                                 "Retract mm before parking (0 = none; firmware G10 if the file uses it; default: the slicer's)")
+                      ->type_name("MM")->capture_default_str()->check(non_negative)->group(pause);
   app.add_option("--retract-speed", c.retract_speed, "Retract speed, mm/s")
       ->type_name("MM/S")->capture_default_str()->check(positive)->group(pause);
   app.add_option("--unretract-speed", c.unretract_speed, "Unretract speed, mm/s")
@@ -197,7 +201,10 @@ int main(int argc, char** argv) {
       ->type_name("GCODE")->group(pause);
   app.add_option("--after", o.after, "G-code (a file, or text with \\n between lines) just after the wait")
       ->type_name("GCODE")->group(pause);
-  tool.check([&] { resolve(o, standby->count() > 0, dwell->count() > 0); });
+  tool.check([&] {
+    o.retract_given = retract->count() > 0;
+    resolve(o, standby->count() > 0, dwell->count() > 0);
+  });
 
   return tool.run(argc, argv, [&] {
     gcode::Diagnostics diag = tool.diagnostics(o.io);

@@ -117,9 +117,10 @@ void Filter::check_selection(const LayerSelection& where, Diagnostics& diag, std
 }
 
 PrintArea Filter::print_area() {
-  PrintArea area;
-  if (scan_file_limits(input_.fd(), area)) return area;
-  return scan_text_limits(pipeline_.read_header(input_.fd()));
+  PrintArea area = slicer_environment(), file;
+  if (!scan_file_limits(input_.fd(), file)) file = scan_text_limits(pipeline_.read_header(input_.fd()));
+  area.merge(file);
+  return area;
 }
 
 void Filter::run() {

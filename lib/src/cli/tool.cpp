@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <csignal>
 
+#include "gcode/cli/completion.hpp"
 #include "gcode/core/number.hpp"
 #include "gcode/core/output_buffer.hpp"
 #include "gcode/version.hpp"
@@ -43,6 +44,14 @@ LayerMarkers FilterOptions::markers() const {
 Tool::Tool(std::string name, std::string description) : name_(std::move(name)), app_(std::move(description), name_) {
   app_.set_version_flag("--version", name_ + " " + kVersion, "Print the version and exit");
   app_.get_formatter()->column_width(34);
+  // Hidden (no group): the build runs it to write the tool's bash completion.
+  // It answers at parse time, when every option of the tool is defined.
+  app_.add_flag_callback("--bash-completion", [this] {
+        std::fputs(bash_completion(name_, completion_entries(app_)).c_str(), stdout);
+        throw CLI::Success();
+      })
+      ->group("")
+      ->configurable(false);
 }
 
 void Tool::add_filter_options(FilterOptions& o, unsigned parts) {

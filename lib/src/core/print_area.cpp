@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <vector>
 
 #include "gcode/core/file_ends.hpp"
@@ -23,6 +24,8 @@ constexpr std::size_t kTailBytes = 1u << 20;
 constexpr std::size_t kMaxCuraSettings = 1u << 20;
 // Unset Cura header values come out as +-2.14748e+06 from the bare CLI.
 constexpr double kSane = 1e5;
+// A retraction longer than this is a typo or a filament unload, not a retraction.
+constexpr double kMaxRetract = 50;
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
@@ -137,6 +140,10 @@ void PrintArea::merge(const PrintArea& o) {
   if (!has_filament_diameter && o.has_filament_diameter) {
     has_filament_diameter = true;
     filament_diameter = o.filament_diameter;
+  }
+  if (!has_retract_length && o.has_retract_length) {
+    has_retract_length = true;
+    retract_length = o.retract_length;
   }
   if (flavor.empty()) flavor = o.flavor;
 }
@@ -261,6 +268,42 @@ PrintArea scan_text_limits(std::string_view text) {
   PrintAreaScanner scanner;
   scan_lines(text, false, scanner);
   return scanner.limits();
+}
+
+PrintArea slicer_environment(EnvironmentLookup lookup) {
+  if (lookup == nullptr) lookup = [](const char* name) -> const char* { return std::getenv(name); };
+  // The keys as the config block spells them; the variable is SLIC3R_ + KEY
+  // in capitals, its value the config's text, read by the same rules.
+  auto variable = [lookup](std::string_view key) {
+    std::string name = "SLIC3R_";
+    for (char k : key) name += static_cast<char>(std::toupper(static_cast<unsigned char>(k)));
+    const char* value = lookup(name.c_str());
+    std::string_view text = value != nullptr ? std::string_view(value) : std::string_view();
+    // A value never spans lines; a stray newline ends it.
+    return text.substr(0, text.find_first_of("\r\n"));
+  };
+  static constexpr std::string_view kKeys[] = {"bed_shape",        "printable_area",    "max_print_height",
+                                               "printable_height", "filament_diameter", "gcode_flavor"};
+  PrintAreaScanner scanner;
+  for (std::string_view key : kKeys) {
+    std::string_view value = variable(key);
+    if (!value.empty()) scanner.observe("; " + std::string(key) + " = " + std::string(value));
+  }
+  PrintArea area = scanner.limits();
+  // The retraction only from the slicer that runs the hook: a file's own
+  // config does not change a tool's default (gc-pause-at keeps its 2 mm).
+  double retract = 0;
+  if (first_number(variable("retract_length"), retract) && retract >= 0 && retract < kMaxRetract) {
+    area.has_retract_length = true;
+    area.retract_length = retract;
+  }
+  return area;
+}
+
+PrintArea printer_facts(int fd, EnvironmentLookup lookup) {
+  PrintArea area = slicer_environment(lookup), file;
+  if (scan_file_limits(fd, file)) area.merge(file);
+  return area;
 }
 
 bool parse_bed_size(std::string_view text, Box2& bed) {

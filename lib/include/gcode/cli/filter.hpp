@@ -56,9 +56,10 @@ class Filter {
   // --layers/--z-range that chose no layer is a warning ("no layer of FILE
   // matches the selection; nothing was <done>").
   void check_selection(const LayerSelection& where, Diagnostics& diag, std::string_view done);
-  // What the file says about the printer (bed, height, the print's box): a
-  // regular file is read at both ends (PrusaSlicer writes its config last);
-  // from a pipe only the header, which stays buffered for the run.
+  // What the slicer's SLIC3R_* environment (a post-processing hook) and then
+  // the file say about the printer (bed, height, the print's box, filament,
+  // retraction): a regular file is read at both ends (PrusaSlicer writes its
+  // config last); from a pipe only the header, which stays buffered for the run.
   PrintArea print_area();
 
   // The E mode of a file that never says M82/M83 (--e-mode, else guessed

@@ -22,6 +22,14 @@
 //   Cura 15 / Craftware / IdeaMaker      ;Filament Diameter: 2.85   ;Filament diameter: 1.75mm
 //                                        ;Filament Diameter #0: 1.75
 //
+// PrusaSlicer, SuperSlicer and OrcaSlicer also hand every setting to a
+// post-processing script as an environment variable SLIC3R_<KEY> with the
+// value as the config block writes it (SLIC3R_BED_SHAPE=0x0,250x0,250x210,0x210,
+// SLIC3R_FILAMENT_DIAMETER=1.75); a tool run as such a script reads them
+// first (slicer_environment), the file second, and its own options override
+// both. The slicer's retraction (SLIC3R_RETRACT_LENGTH=0.8,0.8, the first
+// extruder's) is taken from there only, for tools that retract on their own.
+//
 // Prusa puts its config after the G-code, so a tool that needs the bed before
 // the first pause reads a regular file's head and tail first (scan_file), and
 // on a pipe only what it has seen (the header, for Cura).
@@ -43,6 +51,8 @@ struct PrintArea {
   double print_top = 0;   // the print's highest Z, when the slicer wrote it
   bool has_filament_diameter = false;
   double filament_diameter = 0;  // mm (the first extruder's)
+  bool has_retract_length = false;
+  double retract_length = 0;     // mm (the first extruder's; from SLIC3R_RETRACT_LENGTH only)
   std::string flavor;     // the slicer's firmware flavour as written ("marlin2", "Marlin", "klipper"); "" unknown
 
   // Fills what `other` knows and this does not.
@@ -64,6 +74,17 @@ class PrintAreaScanner {
   unsigned cura_seen_ = 0;  // bit per MINX..MAXZ
   std::string cura_settings_;  // ;SETTING_3 payloads, joined
 };
+
+// The printer facts in SLIC3R_* environment variables (nothing when the
+// tool is not run by one of those slicers). `lookup` reads a variable
+// (std::getenv; tests pass their own).
+using EnvironmentLookup = const char* (*)(const char*);
+PrintArea slicer_environment(EnvironmentLookup lookup = nullptr);
+
+// What the slicer's environment and then a regular file's head and tail say
+// (on a pipe only the environment; Filter::print_area also reads a pipe's
+// header).
+PrintArea printer_facts(int fd, EnvironmentLookup lookup = nullptr);
 
 // "220x220" (or "220X220"): a bed of that width and depth from 0,0.
 // Returns false when the text is not two sizes above 0.
