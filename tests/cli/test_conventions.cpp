@@ -1,8 +1,8 @@
-// The conventions every tool keeps (design.md, "Conventions every tool
-// follows"), checked the same way on every tool: the same --version, usage
-// errors with exit status 2 in one message format, -i that replaces the file
+// The output conventions every filter keeps (design.md, "Conventions every
+// tool follows"), checked the same way on each: -i that replaces the file
 // only when the run succeeded, CRLF kept on the lines a tool inserts, and a
-// closed output pipe that ends a tool quietly. The tools come from tools/*;
+// closed output pipe that ends a tool quietly (options, versions and usage
+// errors of every tool: tests/consistency). The tools come from tools/*;
 // a new one fails here until it is given a row below.
 #include <catch2/catch.hpp>
 
@@ -94,32 +94,16 @@ TEST_CASE("every tool is covered by the conventions tests", "[conventions]") {
   }
 }
 
-TEST_CASE("every tool prints the project's version", "[conventions]") {
-  for (const std::string& tool : tool_names()) {
-    gctest::RunResult r = run(gctest::tool_command(tool, "--version"));
-    INFO(tool);
-    CHECK(r.status == 0);
-    CHECK(r.out == tool + " " + GC_PROJECT_VERSION + "\n");
-  }
-}
-
-TEST_CASE("every tool answers a usage error with exit status 2 and one message in one format", "[conventions]") {
-  for (const std::string& tool : tool_names()) {
-    std::regex format("^" + tool + ": [^\n]+ \\(see " + tool + " --help\\)\n$");
-    gctest::RunResult r = run(gctest::tool_command(tool, "--no-such-option"));
-    INFO(tool << ": " << r.err);
-    CHECK(r.status == 2);
-    CHECK(std::regex_match(r.err, format));
-    CHECK(r.out.empty());
-  }
+TEST_CASE("-i with standard input is a usage error in the common format", "[conventions]") {
+  // The version and the usage-error format of every tool: tests/consistency.
   for (const auto& [tool, c] : filters()) {
     if (!c.in_place) continue;
-    // -i with standard input has no file to rewrite.
     std::regex format("^" + tool + ": [^\n]+ \\(see " + tool + " --help\\)\n$");
     gctest::RunResult r = run(gctest::tool_command(tool, c.changing + " -i -"), read_file(gctest::fixture_path(kFixture)));
     INFO(tool << ": " << r.err);
     CHECK(r.status == 2);
     CHECK(std::regex_match(r.err, format));
+    CHECK(r.out.empty());
   }
 }
 
