@@ -10,6 +10,7 @@ packages=(
   catch2 nlohmann-json3-dev          # unit and tool tests (JSON reports read back)
   clang libclang-rt-14-dev           # libFuzzer targets (the runtime is only recommended)
   librsvg2-bin libxml2-utils         # tests: render and validate SVG
+  imagemagick                        # tests: gc-litho on ImageMagick's built-in rose: and wizard:
 )
 
 missing=()

@@ -175,8 +175,9 @@ std::vector<std::string> texture_parameters(const std::string& image_name, const
   if (m.projection != Projection::Sphere && m.projection != Projection::Z)
     lines.push_back(fmt::format("  bottom = {} mm", mm(m.bottom_z)));
   lines.push_back(fmt::format("  offset = {} {} mm", mm(m.offset_u), mm(m.offset_v)));
-  lines.push_back(fmt::format("  size = {} x {} mm{}", mm(projection.width()), mm(projection.height()),
-                              round ? " (width: once around)" : ""));
+  if (projection.width() > 0)
+    lines.push_back(fmt::format("  size = {} x {} mm{}", mm(projection.width()), mm(projection.height()),
+                                round ? " (width: once around)" : ""));
   if (speeds.binary) {
     lines.push_back(fmt::format("  binary = {} (grey below: {} mm/s, above: {} mm/s, ratio {})", mm(speeds.threshold),
                                 mm(speeds.high * speeds.ratio), mm(speeds.high), mm(speeds.ratio)));
