@@ -151,6 +151,25 @@ TEST_CASE("gc-litho flat gradient: volume, no gaps, constant rate, thickness = t
     }
   }
   CHECK(sampled == 36);
+  // The header's ;TIME: is what gc-layers --time estimates for the same file.
+  auto timed = run(gctest::tool_command("gc-layers", "--time --json"), l.gcode);
+  REQUIRE(timed.status == 0);
+  const double estimated = nlohmann::json::parse(timed.out)["summary"]["time_s"].get<double>();
+  const std::size_t at = l.gcode.find(";TIME:");
+  REQUIRE(at != std::string::npos);
+  CHECK(std::stod(l.gcode.substr(at + 6)) == Approx(estimated).margin(1));
+  // --invert: light = thick, the same mapping turned round.
+  auto inverted = litho(quote(path) + " --width 40 --invert");
+  REQUIRE(inverted.status == 0);
+  const littest::Replayed ri = littest::replay(inverted.out);
+  std::vector<littest::Bead> beads;
+  for (const auto& b : ri.beads)
+    if (b.layer == 50) beads.push_back(b);
+  for (int column = 2; column < 62; column += 10) {
+    const double expected = 0.8 + image.at(column, 0) / 255.0 * (3.0 - 0.8);
+    CHECK(measured_thickness(beads, false, (column + 0.5) * pixel, base.x, base.y, 0, 0, 0) ==
+          Approx(expected).margin(0.03));
+  }
 }
 
 TEST_CASE("gc-litho cylinder gradient: volume, no gaps, constant rate, thickness = the picture's mapping",

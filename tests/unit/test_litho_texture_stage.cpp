@@ -121,3 +121,17 @@ TEST_CASE("texture stage: a move off the picture keeps its speed and gets the in
   for (const auto& m : moves)
     if (m.move.extruding && m.move.start[gcode::kX] >= 20) REQUIRE(m.move.feedrate == 1800);
 }
+
+TEST_CASE("texture stage: the input's own G92 E puts absolute E back in step without a line of ours",
+          "[litho][texture-stage]") {
+  const std::string input = "M82\nG92 E0\nG1 Z0.2 F600\nG1 X0 Y0 F3000\nG1 X20 Y0 E1 F1800\nG92 E0\nG1 X20 Y2 E0.1\n";
+  const Painted p = paint(input);
+  CHECK(p.stats.resyncs == 0);
+  CHECK(p.stats.textured > 10);
+  // After the input's G92 E0 the next piece starts from 0 again, scaled.
+  const auto moves = gctest::replay_moves(p.text);
+  double after_reset = 0;
+  for (const auto& m : moves)
+    if (m.move.extruding && m.move.start[gcode::kX] == 20) after_reset += m.move.filament;
+  CHECK(after_reset == Approx(0.1 * 1800 / 2400).margin(1e-5));  // x = 20: white, 40 mm/s
+}
