@@ -428,6 +428,44 @@ TEST_CASE("gc-litho --texture on a relative-E non-spiral print works, with a not
   CHECK(changed > 100);
 }
 
+TEST_CASE("gc-litho --texture --types WALL-OUTER paints the outer walls only; -i replaces the file only on success",
+          "[gc-litho][texture]") {
+  const std::string input = read_file(gctest::fixture_path("cura_cube_0.2_abs_zhop_skirt.gcode"));
+  const std::string picture = saved(levels(), "levels.pgm");
+  auto r = litho("--texture " + quote(picture) + " --projection y --width 20 --center 110,110 --types WALL-OUTER", input);
+  REQUIRE(r.status == 0);
+  // Every other feature's extrusions: the same moves at the same speeds.
+  struct Done {
+    double x, y, z, feed;
+    bool operator==(const Done&) const = default;
+  };
+  auto others = [](const std::string& text, std::size_t& outer_changed_or_count) {
+    const gctest::LinePlace places = gctest::places_of(text);
+    std::vector<Done> done;
+    for (const auto& m : gctest::replay_moves(text)) {
+      if (!m.move.extruding) continue;
+      if (places.feature[m.line_index] == "WALL-OUTER") {
+        ++outer_changed_or_count;
+        continue;
+      }
+      done.push_back({m.move.end[0], m.move.end[1], m.move.end[2], m.move.feedrate});
+    }
+    return done;
+  };
+  std::size_t outer_in = 0, outer_out = 0;
+  const std::vector<Done> before = others(input, outer_in), after = others(r.out, outer_out);
+  REQUIRE(before.size() > 1000);
+  CHECK(after == before);
+  CHECK(outer_out > outer_in);  // the outer walls were cut into pieces and painted
+  // -i: a usage error leaves the file alone; a run replaces it.
+  const std::string file = gctest::temp_dir() + "/cube.gcode";
+  gctest::write_file(file, input);
+  CHECK(litho("--texture " + quote(picture) + " -i " + quote(file)).status == 2);  // no size
+  CHECK(read_file(file) == input);
+  REQUIRE(litho("--texture " + quote(picture) + " --projection y --width 20 --types WALL-OUTER -i " + quote(file)).status == 0);
+  CHECK(read_file(file) == r.out);
+}
+
 TEST_CASE("gc-litho: bad pictures and bad options get clear messages and the exit status", "[gc-litho][errors]") {
   const std::string dir = gctest::temp_dir();
   // The picture fixtures: an empty file, one pixel, text named .png, and a
