@@ -243,6 +243,17 @@ TEST_CASE("gc-litho writes the parameters, the start and end code given, and the
   const std::string stl = read_file(dir + "/g.stl");
   const std::uint32_t triangles = gcode::litho::litho_stl_triangles(map, {});
   CHECK(stl.size() == 84 + 50 * static_cast<std::size_t>(triangles));
+  // The same picture as PNG, JPEG, BMP and PGM (the fixtures): the same plate.
+  int layers = -1;
+  for (const char* format : {"png", "jpg", "bmp", "pgm"}) {
+    INFO(format);
+    auto f = litho(quote(std::string(GC_FIXTURES_DIR) + "/images/gradient." + format) + " --width 20");
+    REQUIRE(f.status == 0);
+    const int n = littest::replay(f.out).layer_markers;
+    CHECK(n > 10);
+    if (layers >= 0) CHECK(n == layers);
+    layers = n;
+  }
 }
 
 namespace {
