@@ -348,7 +348,7 @@ TEST_CASE("gc-litho --texture on the vase: gc-subdivide's path, E per second kep
     std::string args = "--texture " + quote(picture) + " --projection " + projection + " --low 20 --high 40";
     if (paint.projection == "z") paint.h = paint.w * 32 / 24, args += " --width 60";
     else if (paint.projection != "sphere") args += " --height 80 --bottom 10", paint.w = paint.h * 24 / 32;
-    else args += " --center 110,110,50";
+    else args += " --center 110,110,50 " + quote(gctest::fixture_path(kVase));  // FILE right after X,Y,Z
     auto r = litho(args, input);
     REQUIRE(r.status == 0);
     CHECK(r.err.empty());
@@ -504,6 +504,9 @@ TEST_CASE("gc-litho: bad pictures and bad options get clear messages and the exi
       {"--texture " + quote(good) + " --stl x.stl", 2, "--stl"},
       {"--texture " + quote(good), 2, "--height"},
       {"--texture " + quote(good) + " --height 10 --low 50 --high 40", 2, "--low"},
+      {"--texture " + quote(good) + " --height 10 --center 110", 2, "--center: expected X,Y or X,Y,Z"},
+      {quote(good) + " --center 1,2,3", 2, "--center: expected X,Y"},
+      {"--texture " + quote(good) + " --height 10 --offset 1,2,3", 2, "--offset"},
       {"--texture " + quote(images + "huge_header.pgm") + " --height 10", 1, "20000 x 20000"},
   };
   for (const Case& c : cases) {

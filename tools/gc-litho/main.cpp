@@ -9,6 +9,7 @@
 
 #include "gcode/cli/filter.hpp"
 #include "gcode/cli/tool.hpp"
+#include "gcode/core/number.hpp"
 #include "gcode/litho/litho_estimate.hpp"
 #include "gcode/litho/stl_writer.hpp"
 #include "gcode/litho/texture_stage.hpp"
@@ -29,6 +30,7 @@ struct Options {
   litho::TextureMapping mapping;
   litho::SpeedMapping speeds;
   std::string shape = "flat", projection = "cylinder", texture, stl, start, end;
+  std::string center_text, offset_text;
   std::vector<double> center, offset;
   double skip_z = 0;
   bool stretch = false;
@@ -65,10 +67,9 @@ template <typename F> void library_check(F&& f) {
 int lithophane(Options& o, gcode::cli::Tool& tool) {
   gcode::Diagnostics diag = tool.diagnostics(o.io);
   if (o.io.file.empty() || o.io.file == "-") throw UsageError("give the picture: gc-litho IMAGE [options]");
-  o.gcode.image_name = o.io.file;
   if (!o.start.empty()) o.gcode.start_code = text_of(o.gcode.start_name = o.start, "--start");
   if (!o.end.empty()) o.gcode.end_code = text_of(o.gcode.end_name = o.end, "--end");
-  const litho::HeightMap map(picture(o.io.file), o.map);
+  const litho::HeightMap map(picture(o.gcode.image_name = o.io.file), o.map);
   const litho::LithophanePlanner planner(map, o.plan);
   library_check([&] { o.gcode.validate(); });
   o.gcode.estimated_seconds = litho::estimate_litho_seconds(planner, o.gcode);
@@ -105,10 +106,7 @@ int texture(Options& o, gcode::cli::Tool& tool) {
   const bool selected = !o.where.layers.empty() || !o.where.z_range.empty() || !o.where.types.empty();
   gcode::cli::Filter run(o.io);
   gcode::LayerSelection split_where, paint_where;
-  if (selected) {
-    split_where = run.selection(o.where);
-    paint_where = run.selection(o.where);
-  }
+  if (selected) split_where = run.selection(o.where), paint_where = run.selection(o.where);
   // gc-subdivide's stage cuts the extrusions to the picture's resolution; travel stays whole.
   gcode::SubdivideOptions split{.max_length = o.plan.resolution, .split_travel = false};
   split.min_length = std::min(split.min_length, o.plan.resolution / 2);
@@ -117,8 +115,7 @@ int texture(Options& o, gcode::cli::Tool& tool) {
                             selected ? &paint_where : nullptr,
                             litho::texture_parameters(o.texture, image, *projection, o.speeds, o.plan.resolution,
                                                       o.skip_z, o.where.types));
-  run.add(subdivider);
-  run.add(stage);
+  run.add(subdivider), run.add(stage);
   run.write();
   const litho::TextureStats& s = stage.stats();
   if (s.textured == 0)
@@ -170,8 +167,7 @@ int main(int argc, char** argv) {
   mm("--width", o.map.width, "Picture width (mode 1 default 100; cylinder: from --diameter; mode 2: once around for cylinder)", both, true);
   mm("--height", o.map.height, "Picture height (default: from the width and the picture's aspect)", both, true);
   mm("--resolution", o.plan.resolution, "Pieces (and STL grid) every MM along the path", both);
-  auto* center = app.add_option("--center", o.center, "Where it stands on the bed (mode 2 sphere: X,Y,Z)")
-                     ->type_name("X,Y")->delimiter(',')->expected(2, 3)->group(both);
+  app.add_option("--center", o.center_text, "Where it stands on the bed (mode 2 sphere: X,Y,Z)")->type_name("X,Y")->group(both);
   const char* path = "Lithophane (mode 1): the paths";
   mm("--layer-height", o.plan.layer_height, "Layer height", path);
   mm("--nozzle", o.plan.nozzle, "Nozzle diameter", path);
@@ -200,8 +196,7 @@ int main(int argc, char** argv) {
   app.add_option("--projection", o.projection, "How the picture falls on the print")->type_name("x|y|z|cylinder|sphere")
       ->check(CLI::IsMember({"x", "y", "z", "cylinder", "sphere"}))->capture_default_str()->group(paint);
   app.add_option("--bottom", o.mapping.bottom_z, "Height of the picture's bottom edge, mm")->capture_default_str()->group(paint);
-  app.add_option("--offset", o.offset, "Move the picture right and up on its surface, mm")->type_name("U,V")
-      ->delimiter(',')->expected(2)->group(paint);
+  app.add_option("--offset", o.offset_text, "Move the picture right and up on its surface, mm")->type_name("U,V")->group(paint);
   app.add_flag("--stretch", o.stretch, "Do not keep the picture's aspect (give --width and --height)")->group(paint);
   speed("--low", o.speeds.low, "Speed for black", paint);
   speed("--high", o.speeds.high, "Speed for white (binary: the fast speed)", paint);
@@ -213,6 +208,13 @@ int main(int argc, char** argv) {
 
   tool.check([&] {
     const bool painting = !o.texture.empty();
+    auto numbers = [](const std::string& text, const char* name, const char* form, std::vector<double>& v) {
+      const std::size_t most = std::string_view(form).ends_with(",Z") ? 3 : 2;  // a sphere's centre has a Z
+      if (!text.empty() && (!gcode::parse_number_list(text, v) || v.size() < 2 || v.size() > most))
+        throw UsageError(fmt::format("{}: expected {}, not '{}'", name, form, text));
+    };
+    numbers(o.center_text, "--center", painting ? "X,Y or X,Y,Z" : "X,Y", o.center);
+    numbers(o.offset_text, "--offset", "U,V", o.offset);
     if (painting) {
       refuse(app, {"--shape", "--diameter", "--min", "--max", "--border", "--gamma", "--contrast", "--layer-height",
                    "--nozzle", "--line-width", "--filament-diameter", "--wall-speed", "--infill-speed", "--max-flow",
@@ -237,7 +239,6 @@ int main(int argc, char** argv) {
                  "--skip-z", "--layers", "--z-range", "--types", "--layer-marker", "--e-mode"},
            "paints a picture onto G-code; it goes with --texture IMAGE");
     if (o.io.in_place) throw UsageError("-i replaces G-code; a lithophane is written to standard output or -o");
-    if (center->count() > 0 && o.center.size() != 2) throw UsageError("--center takes X,Y for a lithophane");
     if (!o.center.empty()) o.plan.center_x = o.center[0], o.plan.center_y = o.center[1];
     o.map.shape = o.shape == "cylinder" ? litho::LithoShape::Cylinder : litho::LithoShape::Flat;
     if (o.map.shape == litho::LithoShape::Cylinder && app.get_option("--width")->count() > 0)
