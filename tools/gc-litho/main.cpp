@@ -122,8 +122,8 @@ int texture(Options& o, gcode::cli::Tool& tool) {
     diag.warn(fmt::format("the picture reaches none of the {} extrusions: check --center, --bottom, the size", s.extrusions));
   else if (o.mapping.projection == litho::Projection::Cylinder && s.spiral_layers * 2 < s.layers)
     diag.warn(fmt::format("note: {} is not a spiral (vase mode) print; the picture is painted on every extrusion it "
-                          "reaches, layer by layer (limit it with --types, e.g. --types WALL-OUTER)",
-                          run.input().name()));
+                          "reaches, layer by layer{}", run.input().name(),
+                          o.where.types.empty() ? " (limit it with --types, e.g. --types WALL-OUTER)" : ""));
   diag.info(fmt::format("{} of {} extrusion pieces textured at {:.1f}-{:.1f} mm/s ({} off the picture); {} speed changes, "
                         "{} speeds restored, {} G92 E",
                         s.textured, s.extrusions, s.slowest, s.fastest, s.outside, s.speed_words, s.restores, s.resyncs));
