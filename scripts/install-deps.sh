@@ -12,6 +12,7 @@ packages=(
   librsvg2-bin libxml2-utils         # tests: render and validate SVG
   cura-engine make groff-base        # tests: examples/Makefile's recipe (STL -> G-code), man pages render
   dpkg-dev                           # tests: CPack's .deb dependencies (dpkg-shlibdeps)
+  imagemagick                        # tests: gc-litho on ImageMagick's built-in rose: and wizard:
 )
 
 missing=()

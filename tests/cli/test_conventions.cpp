@@ -32,6 +32,7 @@ struct FilterCase {
 };
 
 const std::map<std::string, FilterCase>& filters() {
+  static const std::string picture = quote(gctest::fixture_path("images/gradient.png"));
   static const std::map<std::string, FilterCase> cases = {
       {"gc-layers", {"--extract 2-5", "--extract 500"}},
       {"gc-pause-at", {"--before-layer 5", "--before-layer 500"}},
@@ -39,6 +40,8 @@ const std::map<std::string, FilterCase>& filters() {
       {"gc-speedup", {"--factor 2 --layers 2-4", "--factor 2 --types no-such-feature"}},
       {"gc-swap-layer", {"--repeat 3", "--repeat 500"}},
       {"gc-relayer", {"--at-z 5", "--at-z 500", false, true}},
+      // -q: the cube is no vase, and the note that says so is not what this checks.
+      {"gc-litho", {"-q --height 20 --texture " + picture, "-q --height 20 --texture " + picture + " --types no-such-feature"}},
   };
   return cases;
 }

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "gcode/litho/height_map.hpp"
-#include "test_litho_support.hpp"
+#include "litho_support.hpp"
 
 using gcode::litho::HeightMap;
 using gcode::litho::HeightMapOptions;

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "gcode/litho/image.hpp"
-#include "test_litho_support.hpp"
+#include "litho_support.hpp"
 #include "test_support.hpp"
 
 using gcode::litho::decode_image;

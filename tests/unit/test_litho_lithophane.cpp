@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "gcode/litho/lithophane.hpp"
-#include "test_litho_support.hpp"
+#include "litho_support.hpp"
 
 using gcode::litho::GreyImage;
 using gcode::litho::HeightMap;

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "gcode/litho/stl_writer.hpp"
-#include "test_litho_support.hpp"
+#include "litho_support.hpp"
 
 using gcode::litho::HeightMap;
 using gcode::litho::HeightMapOptions;

@@ -14,7 +14,7 @@ namespace gcode::litho {
 namespace {
 
 constexpr int kXYZ = 3;
-constexpr int kE = 5;
+constexpr int kE = 6;
 
 std::string num(double v, int decimals = 3) {
   char b[kMaxNumberChars];
@@ -129,7 +129,7 @@ class Emitter {
     z_ = z;
   }
   double z() const { return z_; }
-  double filament_written() const { return static_cast<double>(e_written_) / 1e5; }
+  double filament_written() const { return static_cast<double>(e_written_) / std::pow(10.0, kE); }
 
  private:
   void set_at(Point at) {
