@@ -95,6 +95,13 @@ TEST_CASE("fixed: nine decimals are exact, more are rounded", "[fixed]") {
   CHECK(dec(7800000, 3) == Fixed::from_int(7800));
 }
 
+TEST_CASE("fixed: a negative count of decimals scales up", "[fixed]") {
+  // mantissa x 10^-decimals: 5 x 10^2.
+  CHECK(dec(5, -2) == Fixed::from_int(500));
+  CHECK(dec(-12, -1) == Fixed::from_int(-120));
+  CHECK(dec(5, -30).units() == Fixed::kMax);
+}
+
 TEST_CASE("fixed: to_double is the double the decimal text parses to", "[fixed][property]") {
   // Every value with up to four decimals in +-500 mm, and some of nine.
   for (std::int64_t m = -5'000'000; m <= 5'000'000; m += 997) {
