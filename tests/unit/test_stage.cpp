@@ -115,6 +115,22 @@ TEST_CASE("stage: a later stage sees the stream as changed, with its states", "[
   CHECK(rec.seen[4].x_after == 30);
 }
 
+TEST_CASE("stage: a later stage does not see the state of a dropped line", "[stage]") {
+  FnStage drop([](const TrackedLine& t, Emitter& out) {
+    if (!is(t, "G1 X10")) out.pass(t);
+  });
+  Recorder rec;
+  std::string out = gctest::run_stages("G1 X1\nG1 X10\nG1 Y5\nG1 X30\nG1 Y6\n", {&drop, &rec}, false);
+  CHECK(out == "G1 X1\nG1 Y5\nG1 X30\nG1 Y6\n");
+  REQUIRE(rec.seen.size() == 4);
+  CHECK(rec.seen[1].text == "G1 Y5");
+  CHECK(rec.seen[1].x_before == 1);  // X10 never reached this stage
+  CHECK(rec.seen[1].x_after == 1);
+  CHECK(rec.seen[2].x_before == 1);
+  CHECK(rec.seen[2].x_after == 30);
+  CHECK(rec.seen[3].x_before == 30);  // back in step with the input
+}
+
 TEST_CASE("stage: the emitter's state is what an inserted line starts from", "[stage]") {
   std::vector<double> z_seen;
   FnStage probe([&](const TrackedLine& t, Emitter& out) {
