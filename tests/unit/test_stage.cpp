@@ -12,6 +12,7 @@
 
 #include "gcode/pipeline/pipeline.hpp"
 #include "gcode/pipeline/stage.hpp"
+#include "fn_stage.hpp"
 #include "test_support.hpp"
 
 using gcode::Emitter;
@@ -19,19 +20,9 @@ using gcode::LineOrigin;
 using gcode::Region;
 using gcode::Stage;
 using gcode::TrackedLine;
+using gctest::FnStage;
 
 namespace {
-
-// A stage whose line() is a function.
-class FnStage : public Stage {
- public:
-  using Fn = std::function<void(const TrackedLine&, Emitter&)>;
-  explicit FnStage(Fn fn) : fn_(std::move(fn)) {}
-  void line(const TrackedLine& t, Emitter& out) override { fn_(t, out); }
-
- private:
-  Fn fn_;
-};
 
 // What a stage further down saw of each line.
 struct Seen {
