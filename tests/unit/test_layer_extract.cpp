@@ -148,3 +148,23 @@ TEST_CASE("layer extract: firmware retraction left on by the skipped layers is r
   Extracted r = extract(text, {1, 4});
   CHECK(r.out.find("; layers 2-3 left out\nG92 E4.125\nG10\nG0 Z1.6") != std::string::npos);
 }
+
+TEST_CASE("layer extract: positioning modes the left-out layers set are restored", "[layer_extract]") {
+  // Layer 3 switches to G91 for good: layer 4 is written for relative moves
+  // (and, in Marlin, relative E), so the printer must be told.
+  std::string g91 = four_layers("\n");
+  g91.replace(g91.find(";LAYER:2\n"), 9, ";LAYER:2\nG91\n");
+  Extracted r = extract(g91, {1, 4});
+  CHECK(r.out.find("; layers 2-3 left out\nG91\n;LAYER:3\n") != std::string::npos);  // no absolute travel
+  // M83 in a left-out layer: the E mode is restored, no G92 in relative E.
+  std::string m83 = four_layers("\n");
+  m83.replace(m83.find(";LAYER:2\n"), 9, ";LAYER:2\nM83\n");
+  Extracted e = extract(m83, {1, 4});
+  CHECK(e.out.find("; layers 2-3 left out\nM83\nG0 Z1.6 F600\nG0 X10 Y10 F3000\n") != std::string::npos);
+  // Back to absolute positioning and E at the next layer kept.
+  std::string g90 = four_layers("\n");
+  g90.replace(g90.find(";LAYER:1\n"), 9, "G91\n;LAYER:1\n");
+  g90.replace(g90.find(";LAYER:2\n"), 9, ";LAYER:2\nG90\n");
+  Extracted a = extract(g90, {1, 4});
+  CHECK(a.out.find("; layers 2-3 left out\nG92 E4.125\nG90\nG0 Z") != std::string::npos);
+}
