@@ -3,35 +3,14 @@
 // count, -q silencing all but errors, -v adding information.
 #include <catch2/catch.hpp>
 
-#include <unistd.h>
-
-#include <cstdio>
-#include <functional>
 #include <string>
 
 #include "gcode/core/diagnostics.hpp"
-#include "test_support.hpp"
+#include "capture.hpp"
 
 using gcode::Diagnostics;
 
-namespace {
-
-// What `body` writes to standard error.
-std::string stderr_of(const std::function<void()>& body) {
-  std::string path = gctest::temp_dir() + "/stderr";
-  std::fflush(stderr);
-  int saved = ::dup(2);
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  ::dup2(::fileno(f), 2);
-  body();
-  std::fflush(stderr);
-  ::dup2(saved, 2);
-  ::close(saved);
-  std::fclose(f);
-  return gctest::read_file(path);
-}
-
-}  // namespace
+using gctest::stderr_of;
 
 TEST_CASE("diagnostics: warnings with and without a line, errors and information", "[diagnostics]") {
   std::string err = stderr_of([] {
