@@ -1,9 +1,11 @@
 #pragma once
-// A pipeline stage made of functions, for tests of the pipeline's rules:
-// line() calls `line`, finish() calls `at_end` (if given).
+// Pipeline stages for tests of the pipeline's rules: FnStage, made of
+// functions (line() calls `line`, finish() calls `at_end` if given), and
+// SelectionStage, which keeps a LayerSelection told of layers and end code.
 #include <functional>
 #include <utility>
 
+#include "gcode/pipeline/selection.hpp"
 #include "gcode/pipeline/stage.hpp"
 
 namespace gctest {
@@ -21,6 +23,20 @@ class FnStage : public gcode::Stage {
  private:
   LineFn line_;
   EndFn end_;
+};
+
+// Derived stages ask sel.selects(t) in line().
+class SelectionStage : public gcode::Stage {
+ public:
+  gcode::LayerSelection sel;
+  void layer(const gcode::LayerInfo& info, const gcode::MachineState& before, gcode::Emitter& out) override {
+    sel.enter_layer(info);
+    out.layer(info, before);
+  }
+  void end_code(const gcode::EndCodeInfo& info, const gcode::MachineState& before, gcode::Emitter& out) override {
+    sel.enter_end_code();
+    out.end_code(info, before);
+  }
 };
 
 }  // namespace gctest

@@ -10,6 +10,7 @@
 
 #include "gcode/pipeline/pipeline.hpp"
 #include "gcode/pipeline/selection.hpp"
+#include "fn_stage.hpp"
 
 using gcode::LayerSelection;
 using gcode::SelectionText;
@@ -40,17 +41,8 @@ struct Picked {
 };
 
 Picked pick(const SelectionText& text, int total = 0) {
-  struct Picker : gcode::Stage {
-    LayerSelection sel;
+  struct Picker : gctest::SelectionStage {
     std::vector<std::string> lines;
-    void layer(const gcode::LayerInfo& info, const gcode::MachineState& before, gcode::Emitter& out) override {
-      sel.enter_layer(info);
-      out.layer(info, before);
-    }
-    void end_code(const gcode::EndCodeInfo& info, const gcode::MachineState& before, gcode::Emitter& out) override {
-      sel.enter_end_code();
-      out.end_code(info, before);
-    }
     void line(const gcode::TrackedLine& t, gcode::Emitter& out) override {
       if (sel.selects(t)) lines.push_back(std::to_string(t.layer) + ":" + std::string(t.raw.text));
       out.pass(t);
