@@ -192,6 +192,31 @@ TEST_CASE("filter: the E mode of a file that never sets it, with one warning", "
   CHECK(err.empty());
 }
 
+TEST_CASE("filter: stop_when reads the input no further", "[filter]") {
+  Dir d;
+  std::string text;
+  for (int i = 0; i < 200000; ++i) text += "G1 X" + std::to_string(i) + "\n";  // ~2 MB: several blocks
+  FilterOptions o;
+  o.file = d.file("big.gcode", text);
+  o.output = d.path + "/out.gcode";
+  Filter run(o, gcode::PipelineOptions{.layers = false});
+  std::uint64_t lines = 0;
+  gctest::FnStage count([&](const gcode::TrackedLine& t, gcode::Emitter& out) {
+    ++lines;
+    out.pass(t);
+  });
+  run.add(count);
+  run.stop_when([&] { return lines > 0; });
+  run.write();
+  std::string out = gctest::read_file(o.output);
+  CHECK(out.size() < text.size() / 2);
+  CHECK(!out.empty());
+  // A prefix of whole lines: the line the last read cut off is no line
+  // (it was read as a last line without newline: "G1 X4593" for X45937).
+  CHECK(text.compare(0, out.size(), out) == 0);
+  CHECK(out.back() == '\n');
+}
+
 TEST_CASE("filter: the bed from the file's config at either end", "[filter]") {
   Dir d;
   FilterOptions o;

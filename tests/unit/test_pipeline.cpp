@@ -210,3 +210,24 @@ TEST_CASE("pipeline: each stage finishes once, its last lines go through the lat
   CHECK(second.finished == 1);
   CHECK(second.lines == 2);  // the input line and the first stage's "; end"
 }
+
+TEST_CASE("pipeline: finishing early leaves a line the last read cut off unread", "[pipeline]") {
+  gcode::LayerMarkers markers;
+  Pipeline p(markers, PipelineOptions{.layers = false});
+  Marking marking;
+  p.add(marking);
+  std::string out;
+  {
+    gcode::OutputBuffer buffer(out);
+    gcode::GcodeWriter writer(buffer);
+    p.add(writer);
+    p.feed("G1 X1\nG1 X2\nG1 X4");  // "G1 X45..." still on its way
+    p.finish_early();
+    p.finish_early();
+    p.finish();  // finished already: nothing more
+  }
+  CHECK(out == "G1 X1\nG1 X2\n; end\n");
+  CHECK(marking.lines == 2);
+  CHECK(marking.finished == 1);
+  CHECK(p.finished());
+}
