@@ -86,7 +86,7 @@ TEST_CASE("e mode: a quarter of falling values is the border", "[e_mode]") {
   CHECK(four.relative);
 }
 
-TEST_CASE("e mode: G92 E resets are not drops; travel and bare E are not counted", "[e_mode]") {
+TEST_CASE("e mode: G92 E resets are not drops, travel and bare E are not counted", "[e_mode]") {
   std::string s;
   for (int layer = 0; layer < 10; ++layer) s += "G92 E0\n" + moves(3, false);
   s += "G1 E-2 F2100\nG0 X5 Y5\nG1 Z0.4\n";

@@ -103,7 +103,7 @@ TEST_CASE("event loop: timers fire once their deadline has passed", "[serial][ev
   CHECK(EventLoop::now() >= fired[2]);
 }
 
-TEST_CASE("event loop: a timer due now and a ready descriptor both run; stop() ends the loop", "[serial][event_loop]") {
+TEST_CASE("event loop: a timer due now and a ready descriptor both run, stop() ends the loop", "[serial][event_loop]") {
   EventLoop loop;
   Pipe p;
   REQUIRE(::write(p.w, "x", 1) == 1);
