@@ -168,3 +168,26 @@ TEST_CASE("layer extract: positioning modes the left-out layers set are restored
   Extracted a = extract(g90, {1, 4});
   CHECK(a.out.find("; layers 2-3 left out\nG92 E4.125\nG90\nG0 Z") != std::string::npos);
 }
+
+TEST_CASE("layer extract: temperatures and the fan the left-out layers set are restored", "[layer_extract]") {
+  std::string text = four_layers("\n");
+  text.replace(text.find("M82\n"), 4, "M82\nM104 S215\nM140 S60\n");
+  // Cura turns the fan on at layer 2; a tower lowers the temperature at 3.
+  text.replace(text.find(";LAYER:1\n"), 9, ";LAYER:1\nM106 S255\n");
+  text.replace(text.find(";LAYER:2\n"), 9, ";LAYER:2\nM104 S205\nM140 S55\nM106 S127.5\n");
+  Extracted r = extract(text, {1, 4});
+  CHECK(r.out.find("; layers 2-3 left out\nG92 E4.125\nM104 S205\nM140 S55\nM106 S127.5\nG0 Z1.6 F600\n") !=
+        std::string::npos);
+  // Only what differs: layer 3 kept, the fan and heat it set are printed.
+  Extracted three = extract(text, {1, 3, 4});
+  CHECK(three.out.find("; layer 2 left out\nG92 E3.25\nM106 S255\nG0 Z1.4") != std::string::npos);
+  // The fan off again.
+  std::string off = four_layers("\n");
+  off.replace(off.find(";LAYER:0\n"), 9, ";LAYER:0\nM106 S200\n");
+  off.replace(off.find(";LAYER:1\n"), 9, ";LAYER:1\nM107\n");
+  CHECK(extract(off, {1, 3, 4}).out.find("; layer 2 left out\nG92 E3.25\nM107\nG0 Z") != std::string::npos);
+  // Another tool's temperature names its tool.
+  std::string t1 = four_layers("\n");
+  t1.replace(t1.find(";LAYER:1\n"), 9, ";LAYER:1\nM104 T1 S190\n");
+  CHECK(extract(t1, {1, 3, 4}).out.find("; layer 2 left out\nG92 E3.25\nM104 T1 S190\nG0 Z") != std::string::npos);
+}
