@@ -44,12 +44,27 @@ TEST_CASE("writer: added lines take the input's line ending", "[writer]") {
   CHECK(gctest::run_stages("G28\nG1 X1\r\nG1 X2\n", {&add}, false) == "G28\nG1 X1\r\nM117 added\r\nG1 X2\n");
 }
 
-TEST_CASE("writer: before the first input line the ending is a newline", "[writer]") {
+TEST_CASE("writer: lines added before the first input line wait for its ending", "[writer]") {
   FnStage add([](const TrackedLine& t, Emitter& out) {
-    if (t.raw.number == 1) out.insert("; first");
+    if (t.raw.number == 1) out.insert_lines("; first\n; second");
     out.pass(t);
   });
-  CHECK(gctest::run_stages("G28\r\nG1 X1\r\n", {&add}, false) == "; first\nG28\r\nG1 X1\r\n");
+  CHECK(gctest::run_stages("G28\r\nG1 X1\r\n", {&add}, false) == "; first\r\n; second\r\nG28\r\nG1 X1\r\n");
+  CHECK(gctest::run_stages("G28\nG1 X1\r\n", {&add}, false) == "; first\n; second\nG28\nG1 X1\r\n");
+  // A first line without an ending says nothing: a newline.
+  CHECK(gctest::run_stages("G28", {&add}, false) == "; first\n; second\nG28");
+  // A changed first line keeps the input's ending, which it shows.
+  FnStage change([](const TrackedLine& t, Emitter& out) {
+    if (t.raw.number == 1) {
+      out.insert("; first");
+      return out.replace(t, "G28 X");
+    }
+    out.pass(t);
+  });
+  CHECK(gctest::run_stages("G28\r\nG1 X1\r\n", {&change}, false) == "; first\r\nG28 X\r\nG1 X1\r\n");
+  // Nothing but added lines (an empty input): a newline each.
+  FnStage only(pass, [](Emitter& out) { out.insert_lines("M84\nM300"); });
+  CHECK(gctest::run_stages("", {&only}, false) == "M84\nM300\n");
 }
 
 TEST_CASE("writer: a changed line keeps its own ending and, through LineEdit, its comment", "[writer]") {
@@ -89,7 +104,7 @@ TEST_CASE("writer: counts the lines it wrote and reports the ending it learnt", 
   buffer.flush();
   CHECK(writer.lines_written() == 4);
   CHECK(writer.ending() == "\r\n");
-  CHECK(out == "; x\nG28\r\n; x\r\nG1 X1\r\n");
+  CHECK(out == "; x\r\nG28\r\n; x\r\nG1 X1\r\n");
   CHECK_FALSE(writer.reads_state());
   CHECK_FALSE(writer.reads_lines());
 }
