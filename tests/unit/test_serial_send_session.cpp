@@ -164,3 +164,24 @@ TEST_CASE("send session: Ctrl-C stops sending, twice sends M112", "[serial][send
   CHECK((twice.halted || twice.unread.find("M112") != std::string::npos));
   CHECK(twice.log.commands.size() < 1000);
 }
+
+TEST_CASE("send session: the signal mask is the caller's again afterwards", "[serial][send_session]") {
+  auto blocked = [](int sig) {
+    sigset_t now;
+    sigprocmask(SIG_SETMASK, nullptr, &now);
+    return sigismember(&now, sig) == 1;
+  };
+  REQUIRE_FALSE(blocked(SIGINT));
+  send("G28\n", fast());
+  CHECK_FALSE(blocked(SIGINT));
+  CHECK_FALSE(blocked(SIGTERM));
+  // A caller that blocks SIGTERM itself keeps it blocked.
+  sigset_t term;
+  sigemptyset(&term);
+  sigaddset(&term, SIGTERM);
+  sigprocmask(SIG_BLOCK, &term, nullptr);
+  send("G28\n", fast());
+  CHECK(blocked(SIGTERM));
+  CHECK_FALSE(blocked(SIGINT));
+  sigprocmask(SIG_UNBLOCK, &term, nullptr);
+}
