@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <limits>
+#include <memory>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -131,4 +132,37 @@ TEST_CASE("event loop: set_nonblocking", "[serial][event_loop]") {
   CHECK(::read(p.r, &b, 1) == -1);
   CHECK(errno == EAGAIN);
   CHECK_THROWS_AS(gcode::serial::set_nonblocking(-1), std::system_error);
+}
+
+TEST_CASE("event loop: a handler may add watches while it runs", "[serial][event_loop]") {
+  // The handler captures one pointer, as the session's [this] handlers do:
+  // std::function keeps such a small closure inside itself, so moving the
+  // watch list under the running call would leave it reading freed memory.
+  struct Ctx {
+    EventLoop loop;
+    Pipe first;
+    std::vector<std::unique_ptr<Pipe>> more;
+    int served = 0;
+    int first_id = 0;
+  } ctx;
+  REQUIRE(::write(ctx.first.w, "x", 1) == 1);
+  Ctx* c = &ctx;
+  ctx.first_id = ctx.loop.add_fd(ctx.first.r, POLLIN, [c](short) {
+    char b;
+    CHECK(::read(c->first.r, &b, 1) == 1);
+    for (int i = 0; i < 64; ++i) {
+      c->more.push_back(std::make_unique<Pipe>());
+      Pipe* p = c->more.back().get();
+      REQUIRE(::write(p->w, "y", 1) == 1);
+      c->loop.add_fd(p->r, POLLIN, [c, p](short) {
+        char y;
+        CHECK(::read(p->r, &y, 1) == 1);
+        ++c->served;
+      });
+    }
+    c->loop.remove_fd(c->first_id);  // `c` read after the additions
+  });
+  ctx.loop.add_timer([c] { return c->served == 64 ? 0.0 : kNever; }, [c](double) { c->loop.stop(); });
+  ctx.loop.run();
+  CHECK(ctx.served == 64);
 }
