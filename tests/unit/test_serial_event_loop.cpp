@@ -166,3 +166,25 @@ TEST_CASE("event loop: a handler may add watches while it runs", "[serial][event
   ctx.loop.run();
   CHECK(ctx.served == 64);
 }
+
+TEST_CASE("event loop: a timer may add timers when it fires", "[serial][event_loop]") {
+  struct Ctx {
+    EventLoop loop;
+    int added = 0;
+    int fired = 0;
+    double due = 0;  // the first timer's deadline: now
+  } ctx;
+  Ctx* c = &ctx;
+  ctx.loop.add_timer([c] { return c->due; },
+                     [c](double) {
+                       c->due = kNever;
+                       for (int i = 0; i < 64; ++i) {
+                         ++c->added;
+                         c->loop.add_timer([c] { return c->fired < c->added ? 0.0 : kNever; }, [c](double) { ++c->fired; });
+                       }
+                       c->due = kNever;  // `c` read after the additions
+                     });
+  ctx.loop.run();  // ends once every timer is idle
+  CHECK(ctx.added == 64);
+  CHECK(ctx.fired == 64);
+}

@@ -4,7 +4,6 @@
 // the CPU stays idle while a slow printer works.
 #include <deque>
 #include <functional>
-#include <vector>
 
 namespace gcode::serial {
 
@@ -43,7 +42,7 @@ class EventLoop {
   // A deque: a handler may add watches while it runs, and its own (a closure
   // std::function holds inline) must not move under it.
   std::deque<Watch> watches_;
-  std::vector<Timer> timers_;
+  std::deque<Timer> timers_;  // a deque for the same reason: fire() may add timers
   bool stopped_ = false;
 };
 
