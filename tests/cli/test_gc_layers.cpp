@@ -76,7 +76,7 @@ TEST_CASE("gc-layers finds the layers each slicer wrote, on every fixture", "[gc
   }
 }
 
-TEST_CASE("each layer's Z is the slicer's ;Z:", "[gc-layers][fixtures]") {
+TEST_CASE("each layer's Z is the slicer's Z: comment", "[gc-layers][fixtures]") {
   for (const auto& name : gctest::fixture_names()) {
     std::string text = read_file(fixture_path(name));
     std::vector<double> zs;

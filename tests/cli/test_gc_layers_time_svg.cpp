@@ -146,7 +146,7 @@ TEST_CASE("gc-layers --svg draws a layer that renders, for Prusa and Cura files"
   CHECK(bed.out.find("<polygon fill=\"#f6f6f2\"") != std::string::npos);
 }
 
-TEST_CASE("gc-layers --svg with a pattern writes one file per layer; --svg-sheet one grid", "[gc-layers][svg]") {
+TEST_CASE("gc-layers --svg with a pattern writes one file per layer, --svg-sheet one grid", "[gc-layers][svg]") {
   std::string dir = gctest::temp_dir();
   std::string path = fixture_path("cura_pegs_0.2_rel_fwretract.gcode");
   auto r = run(gctest::tool_command("gc-layers", "--svg 2-4 --svg-out " + quote(dir + "/l-{}.svg") + " " + quote(path)));

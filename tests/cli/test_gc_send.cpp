@@ -156,7 +156,7 @@ TEST_CASE("gc-send: Ctrl-C stops, a second Ctrl-C sends M112", "[gc-send]") {
   CHECK(r.err.find("emergency stop: M112 sent") != std::string::npos);
 }
 
-TEST_CASE("gc-send: usage errors exit 2; --list-ports works without hardware", "[gc-send]") {
+TEST_CASE("gc-send: usage errors exit 2, --list-ports works without hardware", "[gc-send]") {
   CHECK(run(quote(tool_path("gc-send")) + " --flow fast").status == 2);
   CHECK(run(quote(tool_path("gc-send")) + " --port virtual:warp=9").status == 2);
   CHECK(run(quote(tool_path("gc-send")) + " --baud 0").status == 2);

@@ -22,10 +22,12 @@ inline std::vector<SentCommand> commands_of(std::string_view text, std::size_t l
   std::vector<SentCommand> out;
   gcode::MemoryLineSplitter split(text);
   gcode::RawLine raw;
+  std::string scratch;
   while (split.next(raw) && out.size() < limit) {
     gcode::Line line = gcode::Line::parse(raw.text);
     if (line.kind == gcode::CommandKind::None || line.kind == gcode::CommandKind::Host || line.is_m(110)) continue;
-    std::string_view cmd = gcode::serial::command_for_sending(line.code());
+    // "(...)" comments inside the code are taken out, not cut at.
+    std::string_view cmd = gcode::serial::command_for_sending(line, scratch);
     if (!cmd.empty()) out.push_back({std::string(cmd), raw.number});
   }
   return out;

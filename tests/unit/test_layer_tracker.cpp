@@ -78,7 +78,7 @@ TEST_CASE("unmarked files: a layer starts at extrusion on a new Z, hops do not c
   CHECK(r.saw_end);
 }
 
-TEST_CASE("Cura: the move to the next Z before ;LAYER:n belongs to the new layer", "[layer_tracker]") {
+TEST_CASE("Cura: the move to the next Z before the LAYER:n marker belongs to the new layer", "[layer_tracker]") {
   std::string text =
       "M82\nG92 E0\nG1 F1500 E-6.5\n;LAYER_COUNT:2\n;LAYER:0\nG0 F600 X10 Y10 Z0.3\nG1 F1200 X20 E1\n"
       "G1 F2700 E-5\n;MESH:NONMESH\nG0 F600 X10 Y10 Z0.5\n;TIME_ELAPSED:1\n;LAYER:1\nG0 X12\nG1 F2700 E1\n"
@@ -95,7 +95,7 @@ TEST_CASE("Cura: the move to the next Z before ;LAYER:n belongs to the new layer
   CHECK(layer_of(r, ";TIME_ELAPSED:2") == -1);
 }
 
-TEST_CASE("PrusaSlicer: ;LAYER_CHANGE with ;Z: and ;HEIGHT:, purge before is start code", "[layer_tracker]") {
+TEST_CASE("PrusaSlicer: LAYER_CHANGE with Z: and HEIGHT: comments, purge before is start code", "[layer_tracker]") {
   std::string text =
       "M83\nG1 Z0.2\nG1 X60 E9 ; intro line\nG1 X100 E12.5 ; intro line\nG92 E0\n"
       ";LAYER_CHANGE\n;Z:0.2\n;HEIGHT:0.2\nG1 E-.8\nG1 Z.2\nG1 X10 Y10\nG1 E.8\nG1 X20 E1\n"

@@ -63,7 +63,7 @@ TEST_CASE("endings are kept exactly: LF, CRLF, none at the end", "[line_reader]"
   CHECK(l.number == 4);
 }
 
-TEST_CASE("empty input gives no line; a lone newline gives one empty line", "[line_reader]") {
+TEST_CASE("empty input gives no line, a lone newline gives one empty line", "[line_reader]") {
   std::size_t n = 7;
   CHECK(roundtrip("", 16, &n).empty());
   CHECK(n == 0);

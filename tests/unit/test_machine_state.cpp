@@ -43,7 +43,7 @@ TEST_CASE("Marlin couples E to G90/G91", "[machine_state]") {
   CHECK_FALSE(s.relative_e);
 }
 
-TEST_CASE("G92 shifts coordinates without moving; filament is unaffected", "[machine_state]") {
+TEST_CASE("G92 shifts coordinates without moving, filament is unaffected", "[machine_state]") {
   gcode::MachineState s;
   apply(s, "G1 X10 Y10 E5");
   apply(s, "G92 E0");
@@ -107,7 +107,7 @@ TEST_CASE("arcs: length of I/J and R forms, full circle", "[machine_state][arc]"
   CHECK(m.xy_length == Approx(3 * 3.14159265 * 10 / 2));
 }
 
-TEST_CASE("arcs: Marlin's P word adds full turns; a bad P is no arc", "[machine_state][arc]") {
+TEST_CASE("arcs: Marlin's P word adds full turns, a bad P is no arc", "[machine_state][arc]") {
   gcode::MachineState s;
   apply(s, "G1 X0 Y0");
   auto m = apply(s, "G3 X10 Y0 I5 J0 P2 Z1");  // two turns, then the half circle, rising 1 mm

@@ -121,7 +121,7 @@ TEST_CASE("flow control: window counts lines and bytes, one byte short of the bu
   CHECK_FALSE(f.may_send(4, 40, 10));  // the queue is full
 }
 
-TEST_CASE("flow control: advanced-ok learns the queue from B; auto switches on it", "[serial]") {
+TEST_CASE("flow control: advanced-ok learns the queue from B, auto switches on it", "[serial]") {
   FlowControl f(FlowMode::AdvancedOk, 4, 1024);
   CHECK_FALSE(f.ok_numbers_acknowledge());
   Response ok = parse_response("ok P15 B7");  // BUFSIZE 8, only the acknowledged command queued

@@ -98,7 +98,7 @@ TEST_CASE("virtual printer: bytes beyond the RX buffer are lost while a command 
   CHECK(resend);
 }
 
-TEST_CASE("virtual printer: M105, M114, M115 answers; M112 halts at once", "[serial]") {
+TEST_CASE("virtual printer: M105, M114, M115 answers, M112 halts at once", "[serial]") {
   VirtualPrinterConfig c;
   c.time_scale = 20;
   VirtualPrinter p(c);

@@ -71,7 +71,7 @@ TEST_CASE("a long move becomes equal pieces ending on the input's own E text", "
   CHECK(l[6] == "M400\n");
 }
 
-TEST_CASE("F is written on the first piece only; the mode stays", "[subdivide]") {
+TEST_CASE("F is written on the first piece only, the mode stays", "[subdivide]") {
   std::string out = checked("G1 X0 Y0\nG1 F3000 X0.6 Y0.8\nG1 X0 Y0\n", max_of(0.4));
   auto l = lines_of(out);
   REQUIRE(l.size() == 1 + 3 + 3);
@@ -189,7 +189,7 @@ TEST_CASE("without travel splitting travel stays whole and extrusion is split", 
   CHECK(l.size() == 2 + 5);
 }
 
-TEST_CASE("line endings: CRLF kept on every piece; a missing final newline stays missing", "[subdivide]") {
+TEST_CASE("line endings: CRLF kept on every piece, a missing final newline stays missing", "[subdivide]") {
   std::string out = checked("G1 X0 Y0\r\nG1 X1 Y0\r\nG1 X0 Y0", max_of(0.4));
   auto l = lines_of(out);
   REQUIRE(l.size() == 1 + 3 + 3);

@@ -137,7 +137,7 @@ void Filter::write(const std::function<void()>& verify) {
   if (done_) {
     while (!done_() && pipeline_.read_some(input_.fd())) {
     }
-    pipeline_.finish();
+    pipeline_.finish_early();  // a no-op when the input ended
   } else {
     pipeline_.run(input_.fd());
   }

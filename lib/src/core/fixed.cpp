@@ -38,7 +38,12 @@ std::int64_t divide_rounded(std::int64_t a, std::int64_t b) {
 }  // namespace
 
 Fixed Fixed::from_decimal_slow(std::int64_t mantissa, int decimals) {
-  if (decimals < 0) return from_units(mul_sat(mantissa, kOne));
+  if (decimals < 0) {
+    // mantissa x 10^-decimals: whole tens first, saturating like the rest.
+    std::int64_t whole = mantissa;
+    for (int i = 0; i < -decimals && whole != 0 && whole < kMax && whole > -kMax; ++i) whole = mul_sat(whole, 10);
+    return from_units(mul_sat(whole, kOne));
+  }
   if (decimals - kDecimals > 18) return Fixed();
   return from_units(divide_rounded(mantissa, kPow10[decimals - kDecimals]));
 }

@@ -121,6 +121,17 @@ void Pipeline::finish() {
   wire();
   splitter_.end_of_input();
   drain();
+  finish_stages();
+}
+
+void Pipeline::finish_early() {
+  if (finished_) return;
+  wire();
+  drain();  // whole lines still buffered go on; a partial one stays unread
+  finish_stages();
+}
+
+void Pipeline::finish_stages() {
   tracker_.finish();
   finished_ = true;
   // Each stage's last words go through the stages after it, which finish later.

@@ -15,6 +15,14 @@ void Emitter::pass_changed(const TrackedLine& t) {
   }
 }
 
+void Emitter::dropped(const TrackedLine& t) {
+  // A later stage must not see the state of a line that never reached it.
+  if (same_machine(t.before, t.state)) return;
+  state_ = t.before;
+  own_ = true;
+  cursor_ = &state_;
+}
+
 void Emitter::replace(const TrackedLine& t, std::string_view text) {
   deliver_new(text, t.raw.ending, LineOrigin::Changed, &t);
   if (own_ && same_machine(state_, t.state)) {

@@ -8,6 +8,7 @@
 #include <ctime>
 #include <limits>
 #include <system_error>
+#include <vector>
 
 namespace gcode::serial {
 

@@ -31,7 +31,7 @@ SendSession::SendSession(EventLoop& loop, Sender& sender, int input_fd, int port
   sigemptyset(&mask);
   sigaddset(&mask, SIGINT);
   sigaddset(&mask, SIGTERM);
-  sigprocmask(SIG_BLOCK, &mask, nullptr);
+  sigprocmask(SIG_BLOCK, &mask, &saved_mask_);
   signal_fd_ = signalfd(-1, &mask, SFD_CLOEXEC | SFD_NONBLOCK);
   if (signal_fd_ >= 0) loop_.add_fd(signal_fd_, POLLIN, [this](short) { on_signal(); });
   input_watch_ = loop_.add_fd(input_fd_, POLLIN, [this](short) { read_input(); });
@@ -48,11 +48,8 @@ SendSession::SendSession(EventLoop& loop, Sender& sender, int input_fd, int port
 
 SendSession::~SendSession() {
   if (signal_fd_ >= 0) ::close(signal_fd_);
-  sigset_t mask;
-  sigemptyset(&mask);
-  sigaddset(&mask, SIGINT);
-  sigaddset(&mask, SIGTERM);
-  sigprocmask(SIG_UNBLOCK, &mask, nullptr);
+  // Back to the mask the caller had (a signal it blocked itself stays blocked).
+  sigprocmask(SIG_SETMASK, &saved_mask_, nullptr);
 }
 
 void SendSession::run() {

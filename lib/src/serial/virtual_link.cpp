@@ -2,6 +2,8 @@
 
 #include <poll.h>
 #include <sys/prctl.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -13,6 +15,8 @@ namespace gcode::serial {
 VirtualLink::VirtualLink(EventLoop& loop, VirtualPrinter& printer, int fd)
     : loop_(loop), printer_(printer), fd_(fd), wall0_(EventLoop::now()), scale_(printer.config().time_scale) {
   set_nonblocking(fd_);
+  struct stat st {};
+  socket_ = ::fstat(fd_, &st) == 0 && S_ISSOCK(st.st_mode);
   // The model wakes for every line it sends; the kernel's default 50 us
   // timer slack, multiplied by the time scale, would stretch the simulated
   // round trips.
@@ -64,7 +68,15 @@ void VirtualLink::pump() {
   out_.append(ready);
   printer_.take(ready.size());
   while (!out_.empty()) {
-    ssize_t n = ::write(fd_, out_.data(), out_.size());
+    // A socket whose host end is gone is EPIPE, never a SIGPIPE that would
+    // end the whole process (gc-send runs the model in-process).
+    ssize_t n = socket_ ? ::send(fd_, out_.data(), out_.size(), MSG_NOSIGNAL) : ::write(fd_, out_.data(), out_.size());
+    if (n < 0 && errno == EPIPE) {
+      loop_.set_events(watch_, 0);
+      loop_.remove_fd(watch_);
+      closed_ = true;
+      return;
+    }
     if (n <= 0) break;
     out_.erase(0, static_cast<std::size_t>(n));
   }

@@ -60,6 +60,9 @@ class Pipeline : private LayerSink {
   void feed(std::string_view bytes);
   // The end of the input: releases held lines and finishes every stage.
   void finish();
+  // Ends the run before the input's end (the tool needs no more of it): a
+  // line the last read cut off is not a line, the stages finish as usual.
+  void finish_early();
 
   // Reads ahead without consuming: buffers input from `fd` until a motion
   // command has been seen or `max_bytes` are buffered (whichever first), and
@@ -83,6 +86,7 @@ class Pipeline : private LayerSink {
   void on_line(const TrackedLine& line) override;
   void wire();
   void drain();
+  void finish_stages();
 
   PipelineOptions options_;
   LayerTracker tracker_;

@@ -64,6 +64,7 @@ class Emitter {
   friend class Pipeline;
   void deliver(const TrackedLine& t);
   void pass_changed(const TrackedLine& t);
+  void dropped(const TrackedLine& t);
   void deliver_new(std::string_view text, std::string_view ending, LineOrigin origin, const TrackedLine* from);
 
   Stage* next_ = nullptr;         // null: the end of the chain
@@ -125,6 +126,9 @@ inline void Emitter::deliver(const TrackedLine& t) {
   out.cursor_ = &t.before;
   out.line_ = &t;
   next_->line(t, out);
+  // Dropped (nothing passed, replaced or inserted): the stream after the
+  // stage stays where it was before the line.
+  if (out.cursor_ == &t.before && out.track_ && !out.own_) out.dropped(t);
   // The line's views end here; an insert made later (finish) takes the
   // context of the last event.
   out.line_ = nullptr;

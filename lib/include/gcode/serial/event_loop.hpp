@@ -2,8 +2,8 @@
 // One thread, one poll(): file descriptors and timers. Nothing spins: the
 // loop sleeps until a descriptor is ready or the earliest timer is due, so
 // the CPU stays idle while a slow printer works.
+#include <deque>
 #include <functional>
-#include <vector>
 
 namespace gcode::serial {
 
@@ -39,8 +39,10 @@ class EventLoop {
     Deadline deadline;
     Fire fire;
   };
-  std::vector<Watch> watches_;
-  std::vector<Timer> timers_;
+  // A deque: a handler may add watches while it runs, and its own (a closure
+  // std::function holds inline) must not move under it.
+  std::deque<Watch> watches_;
+  std::deque<Timer> timers_;  // a deque for the same reason: fire() may add timers
   bool stopped_ = false;
 };
 

@@ -5,6 +5,8 @@
 // Sender; the Sender's bytes go to the port, the port's lines back to the
 // Sender. Ctrl-C once stops sending and waits for the lines in flight;
 // Ctrl-C twice sends M112 at once.
+#include <signal.h>
+
 #include <cstdint>
 #include <string>
 
@@ -45,6 +47,7 @@ class SendSession : private Stage {
   int input_fd_;
   int port_fd_;
   int signal_fd_ = -1;
+  sigset_t saved_mask_{};  // the signal mask before the session blocked SIGINT and SIGTERM
   Diagnostics& diag_;
   LayerMarkers markers_;
   Pipeline pipeline_;

@@ -29,6 +29,7 @@ class VirtualLink {
   VirtualPrinter& printer_;
   int fd_;
   int watch_ = -1;
+  bool socket_ = false;  // a socketpair (gc-send --port virtual), else a pty master
   double wall0_;
   double scale_;
   std::string out_;  // transmitted by the model, not yet accepted by the fd

@@ -1,10 +1,12 @@
 #pragma once
 // Keeps the start code, a chosen set of layers and the end code, as G-code a
 // printer can run: where layers are left out, a short bridge keeps the E
-// coordinate continuous (G92 E in absolute mode) and travels safely into the
-// next chosen layer (lift above both heights, move in XY, go down to the
-// layer's Z, restore the feed rate). With every layer chosen nothing is
-// inserted, so the output is the input byte for byte.
+// coordinate continuous (G92 E in absolute mode), restores the firmware
+// retraction, the G90/G91 and M82/M83 modes, the temperatures and the fan
+// the left-out layers set, and travels safely into the next chosen layer
+// (lift above both heights, move in XY, go down to the layer's Z, restore
+// the feed rate). With every layer chosen nothing is inserted, so the output
+// is the input byte for byte.
 #include <functional>
 #include <string>
 
@@ -44,11 +46,8 @@ class LayerExtractor : public Stage {
   int first_skipped_ = 0;
   int last_skipped_ = 0;
   int written_ = 0;
-  // What the printer has been told so far (state after the last written line).
-  Vec4 printed_position_;
-  bool printed_relative_xyz_ = false;
-  bool printed_fw_retracted_ = false;
-  bool printed_known_z_ = false;
+  // What the printer has been told when a run of left-out layers began.
+  MachineState printed_;
 };
 
 }  // namespace gcode
