@@ -23,7 +23,7 @@ std::string progress_line(const ProgressSnapshot& s) {
   std::string line = fmt::format("{:<10}", s.state);
   if (s.layer > 0) {
     line += fmt::format(" layer {}", s.layer);
-    if (s.layers >= s.layer) line += fmt::format("/{}", s.layers);
+    if (s.layers > s.layer) line += fmt::format("/{}", s.layers);
   } else {
     line += " start code";
   }
@@ -39,9 +39,10 @@ std::string progress_json(const ProgressSnapshot& s) {
   auto num = [](double v) { return v < 0 ? std::string("null") : fmt::format("{:.3f}", v); };
   return fmt::format(
       "{{\"state\": \"{}\", \"layer\": {}, \"layers\": {}, \"percent\": {}, \"lines\": {}, \"lines_per_second\": {:.1f}, "
-      "\"elapsed\": {:.3f}, \"eta\": {}, \"speed\": {:g}, \"pauses\": {}, \"last_pause_mm\": {}, \"last_pause_s\": {}}}\n",
+      "\"elapsed\": {:.3f}, \"eta\": {}, \"speed\": {:g}, \"pauses\": {}, \"last_pause_mm\": {}, \"last_pause_s\": {}, "
+      "\"last_pause_layer\": {}, \"last_paused_before\": {}}}\n",
       s.state, s.layer, s.layers, num(s.percent), s.lines, s.lines_per_second, s.elapsed, num(s.eta), s.speed, s.pauses,
-      num(s.last_pause_mm), num(s.last_pause_s));
+      num(s.last_pause_mm), num(s.last_pause_s), s.last_pause_layer, s.last_paused_before);
 }
 
 Progress::Progress(ProgressOptions options) : options_(std::move(options)) {}

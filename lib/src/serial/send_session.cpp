@@ -229,6 +229,8 @@ ProgressSnapshot SendSession::snapshot() const {
   if (!control_->pauses().empty()) {
     s.last_pause_mm = control_->pauses().back().latency_mm;
     s.last_pause_s = control_->pauses().back().latency_s;
+    s.last_pause_layer = control_->pauses().back().layer;
+    s.last_paused_before = control_->pauses().back().paused_before_layer;
   }
   return s;
 }

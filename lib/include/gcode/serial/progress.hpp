@@ -22,6 +22,8 @@ struct ProgressSnapshot {
   int pauses = 0;
   double last_pause_mm = -1;    // the last pause's latency (a simulated printer tells)
   double last_pause_s = -1;
+  int last_pause_layer = 0;     // the layer the last pause was asked in
+  int last_paused_before = 0;   // the layer it paused before (0: mid-layer)
 };
 
 enum class ProgressMode : std::uint8_t { Off, Live, Plain };
