@@ -149,8 +149,9 @@ struct Checked {
 // input commands [0, prefix) (F words may differ: the rush), the blocks,
 // then input commands [prefix, end) (the first move may carry its F back),
 // then M400. Returns where.
+// `speed_after`: a speed change follows the resume (F words may differ).
 Checked check_one_pause(const std::vector<Executed>& log, const std::vector<gctest::SentCommand>& input,
-                        std::uint64_t last_input_line) {
+                        std::uint64_t last_input_line, bool speed_after = false) {
   Checked c;
   while (c.prefix < input.size() && input[c.prefix].source_line <= last_input_line) ++c.prefix;
   REQUIRE(log.size() > input.size());
@@ -162,7 +163,7 @@ Checked check_one_pause(const std::vector<Executed>& log, const std::vector<gcte
   for (std::size_t i = c.prefix; i < input.size(); ++i) {
     INFO("after the block, command " << i);
     const std::string& got = log[i + c.block].command;
-    if (i < c.prefix + 3) {
+    if (i < c.prefix + 3 || speed_after) {
       REQUIRE(without_f(got) == without_f(input[i].text));
     } else {
       REQUIRE(got == input[i].text);
@@ -367,4 +368,53 @@ TEST_CASE("gc-send: a first Ctrl-C is a cancel: safe end, exit 0", "[gc-send][pa
   REQUIRE(executed.commands.size() > 5);
   CHECK(executed.commands.back() == "M400");
   CHECK(executed.commands[executed.commands.size() - 2] == "M84");
+}
+
+TEST_CASE("gc-send: commands typed while paused are put back before the resume; speed F scales what follows",
+          "[gc-send][pause]") {
+  const std::string& file = pieces_file();
+  auto input = gctest::commands_of(gctest::read_file(file));
+  PauseRun r = send_with_control(
+      file, "time-scale=20,instant-moves,heat-rate=1000", "--no-pace",
+      "at_layer 1; echo pause now > \"$F\"; paused; printf 'gcode G91\\ngcode G1 X5 Y-7 Z3 F600\\ngcode M83\\n"
+      "gcode G1 E4 F300\\ngcode M104 S180\\n' > \"$F\"; sleep 0.2; echo resume > \"$F\"; sleep 0.1; "
+      "echo speed 2 > \"$F\"");
+  INFO(r.result.err);
+  REQUIRE(r.result.status == 0);
+  std::uint64_t last = static_cast<std::uint64_t>(number_after(r.result.err, "pause block sent after input line "));
+  Checked c = check_one_pause(r.log, input, last, true);
+  gcode::MachineState before = state_after(r.log, c.prefix);
+  gcode::MachineState after = state_after(r.log, c.prefix + c.block);
+  // The typed commands were executed while paused ...
+  std::size_t typed = 0;
+  for (std::size_t i = c.prefix; i < c.prefix + c.block; ++i)
+    typed += r.log[i].command == "G1 X5 Y-7 Z3 F600" || r.log[i].command == "G1 E4 F300" ? 1 : 0;
+  CHECK(typed == 2);
+  // ... and the print went on from exactly where it stopped.
+  for (int a : {gcode::kX, gcode::kY, gcode::kZ, gcode::kE}) CHECK(after.at(a) == before.at(a));
+  CHECK(after.relative_xyz == before.relative_xyz);
+  CHECK(after.relative_e == before.relative_e);
+  CHECK(after.feedrate == before.feedrate);
+  CHECK(after.hotend_target[0] == before.hotend_target[0]);
+  // speed 2: from some move on, every extruding move runs at twice its speed
+  // (retractions, wipes and Z moves keep theirs, as in gc-speedup): once 20 in a
+  // row were doubled, all the rest are.
+  gcode::MachineState sent = after, original;
+  for (std::size_t i = 0; i < c.prefix; ++i) original.apply(gcode::Line::parse(input[i].text));
+  std::size_t doubled = 0, run = 0, plain_after = 0;
+  for (std::size_t i = c.prefix; i < input.size(); ++i) {
+    gcode::Move got = sent.apply(gcode::Line::parse(r.log[i + c.block].command));
+    gcode::Move was = original.apply(gcode::Line::parse(input[i].text));
+    if (!was.extruding || was.z_changed || was.xy_length <= 0) continue;
+    bool twice = std::fabs(got.feedrate - 2 * was.feedrate) < 1;
+    if (run < 20) {
+      run = twice ? run + 1 : 0;
+    } else if (twice) {
+      ++doubled;
+    } else {
+      ++plain_after;
+    }
+  }
+  CHECK(doubled > 100);
+  CHECK(plain_after == 0);
 }

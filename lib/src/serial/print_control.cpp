@@ -195,8 +195,10 @@ void PrintControl::request_pause(std::string request, bool now) {
 // block: they become the first held lines, and the stream's state and the
 // pause context go back to before them.
 void PrintControl::withdraw_unsent() {
-  // Only the commands of the file since the last block are known here.
-  std::size_t n = std::min({recent_count_, kRecent, sender_.pending()});
+  // Only the commands of the file since the last block are known here, and
+  // the one before the first taken back must be too (what was sent last).
+  if (recent_count_ < 2) return;
+  std::size_t n = std::min({recent_count_ - 1, kRecent - 1, sender_.pending()});
   if (n == 0) return;
   const Recent& first = recent_[(recent_count_ - n) % kRecent];
   std::vector<std::string> commands;
@@ -212,7 +214,7 @@ void PrintControl::withdraw_unsent() {
   held_.swap(back);
   last_ = first.before;
   context_ = first.context;
-  last_source_ = n < recent_count_ ? recent_[(recent_count_ - n - 1) % kRecent].source : 0;
+  last_source_ = recent_[(recent_count_ - n - 1) % kRecent].source;
   recent_count_ -= n;
   diag_.info(fmt::format("pause now: {} commands not sent yet go after the pause", n));
 }

@@ -138,7 +138,7 @@ class PrintControl {
     std::uint64_t source = 0;
     int layer = 0;
   };
-  static constexpr std::size_t kRecent = 8;
+  static constexpr std::size_t kRecent = 16;
   void process(std::string_view command, std::uint64_t source, int layer, const MachineState& after, bool host_pause);
   void submit_lines(const std::vector<std::string>& lines, int layer);
   void track(std::string_view line, MachineState& state) const;
