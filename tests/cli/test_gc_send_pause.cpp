@@ -418,3 +418,29 @@ TEST_CASE("gc-send: commands typed while paused are put back before the resume; 
   CHECK(doubled > 100);
   CHECK(plain_after == 0);
 }
+
+TEST_CASE("gc-send: insert FILE while paused prints its moves, then the resume returns exactly", "[gc-send][pause]") {
+  const std::string& file = pieces_file();
+  auto input = gctest::commands_of(gctest::read_file(file));
+  std::string extra = gctest::temp_dir() + "/tab.gcode";
+  // A small square on the top surface, in absolute E from its own origin.
+  gctest::write_file(extra, "; a tab\nG90\nM82\nG92 E0\nG1 X100 Y100 F3000\nG1 X105 Y100 E0.2 F1200\nG1 X105 Y105 E0.4\n"
+                            "G1 X100 Y105 E0.6\n@pause\nG1 X100 Y100 E0.8\n");
+  PauseRun r = send_with_control(file, "time-scale=20,instant-moves,heat-rate=1000", "--no-pace",
+                                 "at_layer 2; echo pause > \"$F\"; paused; echo insert " + quote(extra) +
+                                     " > \"$F\"; echo insert /nonexistent > \"$F\"; sleep 0.2; echo resume > \"$F\"");
+  INFO(r.result.err);
+  REQUIRE(r.result.status == 0);
+  CHECK(r.result.err.find("insert /nonexistent: no such file") != std::string::npos);
+  std::uint64_t last = static_cast<std::uint64_t>(number_after(r.result.err, "pause block sent after input line "));
+  Checked c = check_one_pause(r.log, input, last);
+  std::size_t tab = 0;
+  for (std::size_t i = c.prefix; i < c.prefix + c.block; ++i)
+    tab += r.log[i].command.rfind("G1 X105", 0) == 0 || r.log[i].command == "G1 X100 Y100 E0.8" ? 1 : 0;
+  CHECK(tab == 3);
+  gcode::MachineState before = state_after(r.log, c.prefix);
+  gcode::MachineState after = state_after(r.log, c.prefix + c.block);
+  for (int a : {gcode::kX, gcode::kY, gcode::kZ, gcode::kE}) CHECK(after.at(a) == before.at(a));
+  CHECK(after.relative_e == before.relative_e);
+  CHECK(after.feedrate == before.feedrate);
+}

@@ -1,6 +1,7 @@
 #include "gcode/serial/print_control.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -9,6 +10,7 @@
 #include "gcode/core/number.hpp"
 #include "gcode/core/placeholders.hpp"
 #include "gcode/core/text.hpp"
+#include "gcode/transform/custom_gcode.hpp"
 #include "gcode/serial/event_loop.hpp"
 #include "gcode/serial/protocol.hpp"
 
@@ -402,6 +404,42 @@ void PrintControl::user_gcode(const std::string& text) {
   diag_.info(fmt::format("gcode: {} sent", copy));
 }
 
+// insert FILE: its commands go out while paused, followed like typed ones,
+// so the resume still returns exactly (a structure printed on the top
+// surface, a purge somewhere else).
+void PrintControl::insert_file(const std::string& path) {
+  if (state_ != PrintState::Paused) {
+    diag_.warn(0, fmt::format("insert {}: only while paused (now {})", path, state_label()));
+    return;
+  }
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    diag_.warn(0, fmt::format("insert {}: no such file", path));
+    return;
+  }
+  std::string text;
+  try {
+    text = load_custom_gcode(path);
+  } catch (const std::exception& e) {
+    diag_.warn(0, fmt::format("insert {}: {}", path, e.what()));
+    return;
+  }
+  std::size_t sent = 0;
+  recent_count_ = 0;
+  for (const std::string& l : split_lines(text)) {
+    Line line = Line::parse(l);
+    if (line.kind == CommandKind::None || line.kind == CommandKind::Host || line.is_m(110)) continue;
+    std::string_view command = command_for_sending(line, scratch_);
+    if (command.empty()) continue;
+    std::string copy(command);
+    sender_.submit(copy, 0, layer_);
+    track(copy, paused_);
+    ++sent;
+  }
+  user_commands_ += sent;
+  diag_.info(fmt::format("insert {}: {} commands sent; resume returns to the print", path, sent));
+}
+
 void PrintControl::set_speed(double factor) {
   speed_ = factor;
   user_speed_.change_factor(factor);
@@ -420,8 +458,8 @@ void PrintControl::command(const ControlCommand& c) {
     case ControlVerb::Status:
       if (on_status) on_status();
       break;
+    case ControlVerb::Insert: insert_file(c.argument); break;
     case ControlVerb::Swap:
-    case ControlVerb::Insert:
       diag_.warn(0, fmt::format("{} {}: not supported yet (see gc-relayer and gc-swap-layer)",
                                 control_verb_name(c.verb), c.argument));
       break;

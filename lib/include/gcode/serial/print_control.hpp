@@ -148,6 +148,7 @@ class PrintControl {
   void resume();
   void cancel();
   void user_gcode(const std::string& text);
+  void insert_file(const std::string& path);
   void set_speed(double factor);
   void withdraw_unsent();
   std::vector<std::string> put_back(const MachineState& from, const MachineState& to) const;
