@@ -138,7 +138,9 @@ int run_send_job(SendJob& job, Diagnostics& diag) {
   PrintControlConfig control = job.control;
   if (job.park) control.park = job.park(session.read_print_area(), control.pause);
   session.set_control(control, job.control_path);
-  if (!job.quiet) session.set_progress(job.progress);
+  ProgressOptions progress = job.progress;
+  if (job.quiet) progress.mode = ProgressMode::Off;  // the status file is still kept
+  session.set_progress(progress);
   if (printer) {
     VirtualPrinter* p = printer.get();
     VirtualLink* l = link.get();
