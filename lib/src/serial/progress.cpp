@@ -31,6 +31,7 @@ std::string progress_line(const ProgressSnapshot& s) {
   line += fmt::format("  {} lines  {:.0f} lines/s  {} elapsed", s.lines, s.lines_per_second, clock_text(s.elapsed));
   if (s.eta >= 0) line += fmt::format("  ETA {}", clock_text(s.eta));
   if (s.speed != 1) line += fmt::format("  speed x{:g}", s.speed);
+  if (!s.temperatures.empty()) line += fmt::format("  {}", s.temperatures);
   if (s.last_pause_mm >= 0) line += fmt::format("  last pause {:.1f} mm {:.2f} s", s.last_pause_mm, s.last_pause_s);
   return line;
 }
@@ -40,9 +41,9 @@ std::string progress_json(const ProgressSnapshot& s) {
   return fmt::format(
       "{{\"state\": \"{}\", \"layer\": {}, \"layers\": {}, \"percent\": {}, \"lines\": {}, \"lines_per_second\": {:.1f}, "
       "\"elapsed\": {:.3f}, \"eta\": {}, \"speed\": {:g}, \"pauses\": {}, \"last_pause_mm\": {}, \"last_pause_s\": {}, "
-      "\"last_pause_layer\": {}, \"last_paused_before\": {}}}\n",
+      "\"last_pause_layer\": {}, \"last_paused_before\": {}, \"temperatures\": \"{}\"}}\n",
       s.state, s.layer, s.layers, num(s.percent), s.lines, s.lines_per_second, s.elapsed, num(s.eta), s.speed, s.pauses,
-      num(s.last_pause_mm), num(s.last_pause_s), s.last_pause_layer, s.last_paused_before);
+      num(s.last_pause_mm), num(s.last_pause_s), s.last_pause_layer, s.last_paused_before, s.temperatures);
 }
 
 Progress::Progress(ProgressOptions options) : options_(std::move(options)) {}

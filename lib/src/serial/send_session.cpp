@@ -225,6 +225,7 @@ ProgressSnapshot SendSession::snapshot() const {
   s.lines_per_second = s.elapsed > 0 ? static_cast<double>(st.lines) / s.elapsed : 0;
   if (s.percent > 1 && s.elapsed > 0) s.eta = s.elapsed * (100 - s.percent) / s.percent;
   s.speed = control_->speed();
+  s.temperatures = sender_.temperatures();
   s.pauses = static_cast<int>(control_->pauses().size());
   if (!control_->pauses().empty()) {
     s.last_pause_mm = control_->pauses().back().latency_mm;

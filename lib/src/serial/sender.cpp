@@ -495,6 +495,12 @@ void Sender::on_line(std::string_view text, double now) {
   last_any_rx_ = now;
   if (settling_) settle_from_ = std::max(settle_from_, now);
   Response r = parse_response(text);
+  if ((r.kind == ResponseKind::Temperature || r.has_temperature) && text.find_first_of("TB") != std::string_view::npos) {
+    std::string_view t = text.substr(text.find_first_of("TB"));
+    temperatures_.assign(t.substr(0, t.find(" @")));  // without the heater powers
+    for (char& c : temperatures_)
+      if (c == '"' || c == '\\' || static_cast<unsigned char>(c) < 0x20) c = ' ';  // kept JSON-safe
+  }
   // The "ok" of a rejected line comes right after its "Resend:"; anything
   // else in between means that ok was lost (or the firmware sends none).
   if (r.kind != ResponseKind::Ok && r.kind != ResponseKind::Resend && r.kind != ResponseKind::Empty)

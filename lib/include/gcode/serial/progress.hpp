@@ -19,6 +19,7 @@ struct ProgressSnapshot {
   double elapsed = 0;           // seconds since the first line
   double eta = -1;              // seconds (-1: unknown)
   double speed = 1;             // `speed F`
+  std::string_view temperatures;  // the printer's last report
   int pauses = 0;
   double last_pause_mm = -1;    // the last pause's latency (a simulated printer tells)
   double last_pause_s = -1;

@@ -184,6 +184,8 @@ class Sender : private TimeSink {
   // The number the last submitted command got (0: none yet).
   long long last_submitted() const { return next_number_ - 1; }
   long long highest_sent() const { return highest_sent_; }
+  // The printer's last temperature report ("T:205.00 /205.00 B:60.00 /60.00"; "" before one).
+  const std::string& temperatures() const { return temperatures_; }
 
   // Takes back the newest commands not sent yet, at most `max` (a pause now
   // goes before them; they are submitted again after it): appended to
@@ -325,6 +327,7 @@ class Sender : private TimeSink {
   std::string failure_;
   bool trace_ = false;
   ActionHandler on_action_;
+  std::string temperatures_;
   // Pacing: when the last answered moves end at the earliest (ring of the
   // planner's size), and when a blocked move may go.
   std::array<double, 64> pace_ends_{};
