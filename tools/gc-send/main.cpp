@@ -33,6 +33,7 @@ int run(gcode::cli::SendOptions& o) {
 
 int main(int argc, char** argv) {
   gcode::cli::SendOptions o;
+  o.pause.config.message = "Paused at layer {layer}";  // gc-pause-at's default
   gcode::cli::Tool tool(
       "gc-send",
       "gc-send: stream G-code to a printer over a serial port, keeping its buffers full without overrunning\n"
