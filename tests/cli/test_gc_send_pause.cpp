@@ -291,7 +291,7 @@ TEST_CASE("gc-send pause now: the nozzle stops within 3.2 mm of the request with
   }
 }
 
-TEST_CASE("gc-send: @pause, ;@pause and --pause-on M0 hold the host and are not sent", "[gc-send][pause]") {
+TEST_CASE("gc-send: @pause, a comment @pause and --pause-on M0 hold the host and are not sent", "[gc-send][pause]") {
   std::string dir = gctest::temp_dir();
   std::string base = gctest::head_of("prusa_cube_0.2_mk3s_rel_zhop.gcode", 3000);
   for (const char* marker : {"@pause", ";@pause", "M0 Change the colour"}) {
@@ -339,7 +339,7 @@ TEST_CASE("gc-send: the control FIFO is refused when it is a regular file or wri
   CHECK(r.err.find("can be written by others") != std::string::npos);
 }
 
-TEST_CASE("gc-send: cancel parks, turns heaters off and exits 0; junk in the FIFO changes nothing", "[gc-send][pause]") {
+TEST_CASE("gc-send: cancel parks, turns heaters off and exits 0, and junk in the FIFO changes nothing", "[gc-send][pause]") {
   const std::string& file = pieces_file();
   PauseRun r = send_with_control(file, "time-scale=5,instant-moves,heat-rate=1000", "",
                                  "head -c 200000 /dev/urandom > \"$F\"; echo > \"$F\"; echo status > \"$F\"; echo bogus > \"$F\"; "
@@ -370,7 +370,7 @@ TEST_CASE("gc-send: a first Ctrl-C is a cancel: safe end, exit 0", "[gc-send][pa
   CHECK(executed.commands[executed.commands.size() - 2] == "M84");
 }
 
-TEST_CASE("gc-send: commands typed while paused are put back before the resume; speed F scales what follows",
+TEST_CASE("gc-send: commands typed while paused are put back before the resume, and speed F scales what follows",
           "[gc-send][pause]") {
   const std::string& file = pieces_file();
   auto input = gctest::commands_of(gctest::read_file(file));

@@ -68,7 +68,7 @@ TEST_CASE("control: several commands per write, a line split over writes, blank 
   CHECK(c.junk.empty());
 }
 
-TEST_CASE("control: a megabyte of junk is dropped and reported once; the next good line works", "[serial][control]") {
+TEST_CASE("control: a megabyte of junk is dropped and reported once, and the next good line works", "[serial][control]") {
   Collected c;
   std::string junk;
   for (int i = 0; i < (1 << 20); ++i) junk += static_cast<char>((i * 7919) & 0xff);
