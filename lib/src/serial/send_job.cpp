@@ -1,6 +1,7 @@
 #include "gcode/serial/send_job.hpp"
 
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -10,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "gcode/cli/io.hpp"
+#include "gcode/pipeline/pipeline.hpp"
 #include "gcode/serial/event_loop.hpp"
 #include "gcode/serial/port.hpp"
 #include "gcode/serial/send_session.hpp"
@@ -153,6 +155,18 @@ int run_send_job(SendJob& job, Diagnostics& diag) {
           queued = p->watched().queued_length;
           return true;
         }});
+  }
+  if (!job.file.empty() && job.file != "-" && !job.quiet) {
+    // A file's layers are counted before it is sent (one quick pass), so the
+    // progress can say "layer 12/40".
+    InputFile again(job.file);
+    struct stat st{};
+    if (::fstat(again.fd(), &st) == 0 && S_ISREG(st.st_mode)) {
+      LayerMarkers markers;
+      Pipeline count(markers);
+      count.run(again.fd());
+      session.set_total_layers(count.tracker().layer_count());
+    }
   }
   if (session.fifo() != nullptr) diag.info(fmt::format("control FIFO: {}", session.fifo()->path()));
   session.run();

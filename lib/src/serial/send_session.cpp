@@ -218,7 +218,7 @@ ProgressSnapshot SendSession::snapshot() const {
   const SenderStats& st = sender_.stats();
   s.state = sender_.finished() ? std::string_view("done") : control_->state_label();
   s.layer = control_->layer();
-  s.layers = pipeline_.tracker().layer_count();
+  s.layers = std::max(total_layers_, pipeline_.tracker().layer_count());
   if (input_size_ > 0) s.percent = 100.0 * static_cast<double>(input_bytes_) / static_cast<double>(input_size_);
   s.lines = st.lines;
   s.elapsed = st.print_start >= 0 ? EventLoop::now() - st.print_start : 0;

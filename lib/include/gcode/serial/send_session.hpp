@@ -41,6 +41,8 @@ class SendSession : private Stage {
   // Pausing, cancelling, speed: before run(). `control_path` empty: no FIFO.
   void set_control(const PrintControlConfig& config, const std::string& control_path);
   void set_progress(const ProgressOptions& options) { progress_.emplace(options); }
+  // The layers of the whole input, when known beforehand (a regular file).
+  void set_total_layers(int layers) { total_layers_ = layers; }
   PrintControl* control() { return control_.get(); }
   const ControlFifo* fifo() const { return fifo_.get(); }
 
@@ -92,6 +94,7 @@ class SendSession : private Stage {
   double next_report_ = 0;
   std::string_view shown_state_;   // what the progress last showed
   int shown_layer_ = -1;
+  int total_layers_ = 0;
 };
 
 }  // namespace gcode::serial
