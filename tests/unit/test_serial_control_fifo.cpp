@@ -149,3 +149,12 @@ TEST_CASE("control: created 0600, never blocks: a silent writer, a closed writer
   }
   CHECK(access(path.c_str(), F_OK) != 0);  // made by it, removed by it
 }
+
+TEST_CASE("control: a FIFO in a folder others may write to is refused", "[serial][control]") {
+  std::string dir = gctest::temp_dir() + "/shared";
+  REQUIRE(mkdir(dir.c_str(), 0777) == 0);
+  chmod(dir.c_str(), 0777);  // writable by all, not sticky: the FIFO could be swapped
+  CHECK_THROWS_WITH(ControlFifo(dir + "/p.fifo"), Catch::Contains("can be changed by others"));
+  chmod(dir.c_str(), 01777);  // sticky, like /tmp: only owners remove their files
+  CHECK_NOTHROW(ControlFifo(dir + "/p.fifo"));
+}

@@ -193,6 +193,16 @@ ControlFifo::ControlFifo(std::string path) : path_(std::move(path)) {
       created_ = true;
     }
   }
+  // Its folder too: someone else who may write there could swap the FIFO
+  // (a sticky folder such as /tmp only lets owners remove their files).
+  std::size_t slash = path_.rfind('/');
+  std::string dir = slash == std::string::npos ? std::string(".") : slash == 0 ? std::string("/") : path_.substr(0, slash);
+  struct stat ds{};
+  if (::stat(dir.c_str(), &ds) == 0 && (ds.st_mode & S_ISVTX) == 0 &&
+      (ds.st_uid != ::getuid() && ds.st_uid != 0 ? true : (ds.st_mode & (S_IWGRP | S_IWOTH)) != 0))
+    throw std::runtime_error(fmt::format(
+        "control FIFO refused: its folder {} can be changed by others (owner uid {}, mode {:o})", dir, ds.st_uid,
+        ds.st_mode & 07777));
   std::string problem = control_path_problem(path_, ::getuid());
   if (!problem.empty()) throw std::runtime_error("control FIFO refused: " + problem);
   fd_ = ::open(path_.c_str(), O_RDWR | O_NONBLOCK | O_CLOEXEC | O_NOFOLLOW);
