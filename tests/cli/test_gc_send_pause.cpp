@@ -444,3 +444,20 @@ TEST_CASE("gc-send: insert FILE while paused prints its moves, then the resume r
   CHECK(after.relative_e == before.relative_e);
   CHECK(after.feedrate == before.feedrate);
 }
+
+TEST_CASE("gc-send: a pause asked in the start code comes right before layer 1", "[gc-send][pause]") {
+  const std::string& file = pieces_file();
+  std::string text = gctest::read_file(file);
+  auto input = gctest::commands_of(text);
+  auto layer = layers_of(text);
+  PauseRun r = send_with_control(file, "time-scale=20,instant-moves,heat-rate=1000", "--no-pace",
+                                 "echo pause > \"$F\"; paused; echo resume > \"$F\"");
+  INFO(r.result.err);
+  REQUIRE(r.result.status == 0);
+  CHECK(r.result.err.find("pause: pausing before layer 1") != std::string::npos);
+  std::uint64_t last = static_cast<std::uint64_t>(number_after(r.result.err, "pause block sent after input line "));
+  Checked c = check_one_pause(r.log, input, last);
+  REQUIRE(c.prefix < input.size());
+  CHECK(layer[input[c.prefix - 1].source_line] == 0);
+  CHECK(layer[input[c.prefix].source_line] == 1);
+}
