@@ -136,11 +136,12 @@ TEST_CASE("gc-send: a fatal printer error stops sending with exit 1", "[gc-send]
 TEST_CASE("gc-send: the built-in virtual printer, host commands kept back, summary", "[gc-send]") {
   std::string dir = gctest::temp_dir();
   std::string log = dir + "/log";
-  std::string input = "; a comment\nG28\n\n@pause\nG1 X10 Y10 F6000 ; move\nN5 G1 X20*99\nM110 N7\nM105\n";
+  // (@pause pauses the host: tests/cli/test_gc_send_pause.cpp.)
+  std::string input = "; a comment\nG28\n\n@notify done\nG1 X10 Y10 F6000 ; move\nN5 G1 X20*99\nM110 N7\nM105\n";
   auto r = run(quote(tool_path("gc-send")) + " -v --port virtual:time-scale=50,log=" + log, input);
   INFO(r.err);
   CHECK(r.status == 0);
-  CHECK(r.err.find("host command '@pause' not sent") != std::string::npos);
+  CHECK(r.err.find("host command '@notify done' not sent") != std::string::npos);
   CHECK(r.err.find("M110 not sent") != std::string::npos);
   CHECK(r.err.find("gc-send: summary: lines 5,") != std::string::npos);
   auto executed = gctest::parse_executed_log(gctest::read_file(log));

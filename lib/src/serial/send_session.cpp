@@ -3,6 +3,7 @@
 #include <poll.h>
 #include <signal.h>
 #include <sys/signalfd.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -12,9 +13,17 @@
 #include <fmt/format.h>
 
 #include "gcode/core/line.hpp"
+#include "gcode/core/line_reader.hpp"
 #include "gcode/serial/protocol.hpp"
 
 namespace gcode::serial {
+
+namespace {
+
+constexpr std::size_t kReadSize = 65536;   // bytes read from the input at once
+constexpr std::size_t kLowWater = 16384;   // read more when less is buffered
+
+}  // namespace
 
 SendSession::SendSession(EventLoop& loop, Sender& sender, int input_fd, int port_fd, Diagnostics& diagnostics)
     : loop_(loop),
@@ -22,11 +31,10 @@ SendSession::SendSession(EventLoop& loop, Sender& sender, int input_fd, int port
       input_fd_(input_fd),
       port_fd_(port_fd),
       diag_(diagnostics),
-      // Small reads: the sender takes lines as the printer needs them, and
-      // stages before it should not run far ahead of the print.
       pipeline_(markers_, PipelineOptions{.layers = true, .block_size = 16384}) {
-  pipeline_.add(*this);
   set_nonblocking(port_fd_);
+  struct stat st{};
+  if (::fstat(input_fd_, &st) == 0 && S_ISREG(st.st_mode)) input_size_ = static_cast<std::uint64_t>(st.st_size);
   sigset_t mask;
   sigemptyset(&mask);
   sigaddset(&mask, SIGINT);
@@ -34,7 +42,6 @@ SendSession::SendSession(EventLoop& loop, Sender& sender, int input_fd, int port
   sigprocmask(SIG_BLOCK, &mask, &saved_mask_);
   signal_fd_ = signalfd(-1, &mask, SFD_CLOEXEC | SFD_NONBLOCK);
   if (signal_fd_ >= 0) loop_.add_fd(signal_fd_, POLLIN, [this](short) { on_signal(); });
-  input_watch_ = loop_.add_fd(input_fd_, POLLIN, [this](short) { read_input(); });
   port_watch_ = loop_.add_fd(port_fd_, POLLIN, [this](short revents) {
     if (revents & (POLLIN | POLLHUP | POLLERR)) read_port();
     update();
@@ -52,48 +59,102 @@ SendSession::~SendSession() {
   sigprocmask(SIG_SETMASK, &saved_mask_, nullptr);
 }
 
+PrintArea SendSession::read_print_area() {
+  PrintArea area;
+  if (scan_file_limits(input_fd_, area)) return area;
+  return scan_text_limits(pipeline_.read_header(input_fd_));
+}
+
+void SendSession::set_control(const PrintControlConfig& config, const std::string& control_path) {
+  control_ = std::make_unique<PrintControl>(config, sender_, diag_, pipeline_.precision());
+  sender_.set_action_handler([this](std::string_view action) { control_->action(action); });
+  control_->on_status = [this] {
+    if (progress_) progress_->print_line(snapshot());
+  };
+  if (control_path.empty()) return;
+  fifo_ = std::make_unique<ControlFifo>(control_path);
+  parser_ = std::make_unique<ControlParser>([this](const ControlCommand& c) { control_->command(c); },
+                                            [this](std::string_view why) { diag_.warn(0, why); });
+  loop_.add_fd(fifo_->fd(), POLLIN, [this](short) {
+    fifo_->read_into(*parser_);
+    update();
+  });
+}
+
 void SendSession::run() {
+  if (!control_) set_control(PrintControlConfig{}, std::string());
+  control_->add_stages(pipeline_);
+  pipeline_.add(*this);
+  input_watch_ = loop_.add_fd(input_fd_, POLLIN, [this](short) { read_input(); });
+  started_ = EventLoop::now();
+  if (progress_) {
+    loop_.add_timer([this] { return next_report_; }, [this](double) { report(false); });
+  }
   sender_.start(EventLoop::now());
   update();
   if (!loop_.stopped()) loop_.run();
+  if (progress_) report(true);
 }
 
 void SendSession::line(const TrackedLine& t, Emitter&) {
   ++input_lines_;
-  const Line& line = t.line;
-  // Blank or comment only; a line that is neither (binary junk) goes to the
-  // sender, which refuses what the firmware cannot read.
-  if (line.kind == CommandKind::None && !line.malformed) return;
-  if (line.kind == CommandKind::Host) {
-    // "@pause" and friends are for the host, never for the firmware.
-    ++host_commands_;
-    diag_.info(fmt::format("line {}: host command '{}' not sent to the printer", t.raw.number, line.code()));
-    return;
-  }
-  std::string_view command = command_for_sending(line, scratch_);
-  if (command.empty()) return;
-  if (line.is_m(110)) {
-    diag_.warn(t.raw.number, "M110 not sent: gc-send numbers the lines itself");
-    return;
-  }
-  sender_.submit(command, t.raw.number, t.layer);
+  control_->line(t);
 }
 
+void SendSession::layer(const LayerInfo& info, const MachineState& before, Emitter&) { control_->layer(info, before); }
+
+void SendSession::end_code(const EndCodeInfo&, const MachineState& before, Emitter&) { control_->end_code(before); }
+
 void SendSession::read_input() {
-  bool more = true;
-  try {
-    more = pipeline_.read_some(input_fd_);
-  } catch (const std::system_error& e) {
-    if (e.code().value() == EAGAIN) return;
-    throw std::runtime_error(fmt::format("cannot read the input: {}", std::strerror(e.code().value())));
+  if (in_pos_ > 0 && in_pos_ == in_buf_.size()) {
+    in_buf_.clear();
+    in_pos_ = 0;
+  } else if (in_pos_ > kLowWater) {
+    in_buf_.erase(0, in_pos_);
+    in_pos_ = 0;
   }
-  if (!more) {
-    input_done_ = true;
-    sender_.end_of_input();
-    loop_.set_events(input_watch_, 0);
-    loop_.remove_fd(input_watch_);
+  std::size_t old = in_buf_.size();
+  in_buf_.resize(old + kReadSize);
+  ssize_t n;
+  do {
+    n = ::read(input_fd_, in_buf_.data() + old, kReadSize);
+  } while (n < 0 && errno == EINTR);
+  if (n < 0) {
+    in_buf_.resize(old);
+    if (errno == EAGAIN) return;
+    throw std::runtime_error(fmt::format("cannot read the input: {}", std::strerror(errno)));
   }
+  in_buf_.resize(old + static_cast<std::size_t>(n));
+  if (n == 0) input_eof_ = true;
   update();
+}
+
+// One line at a time, while the sender and the control take more.
+void SendSession::feed_input() {
+  while (!input_done_ && control_->accepts_input() && sender_.wants_input()) {
+    if (in_pos_ == in_buf_.size() && !input_eof_) break;
+    std::size_t nl = in_buf_.find('\n', in_pos_);
+    if (nl == std::string::npos) {
+      if (!input_eof_) break;
+      if (in_pos_ < in_buf_.size()) {
+        // A last line without a newline.
+        pipeline_.feed(std::string_view(in_buf_).substr(in_pos_));
+        input_bytes_ += in_buf_.size() - in_pos_;
+        in_pos_ = in_buf_.size();
+      }
+      pipeline_.finish();
+      input_done_ = true;
+      control_->end_of_input();
+      break;
+    }
+    pipeline_.feed(std::string_view(in_buf_).substr(in_pos_, nl + 1 - in_pos_));
+    input_bytes_ += nl + 1 - in_pos_;
+    in_pos_ = nl + 1;
+    // Out at once if the flow control allows: the sender holds only a line
+    // or two that is not on its way yet.
+    sender_.pump(EventLoop::now());
+  }
+  if (input_done_ && control_->input_may_end()) sender_.end_of_input();
 }
 
 void SendSession::read_port() {
@@ -140,17 +201,8 @@ void SendSession::on_signal() {
   signalfd_siginfo info{};
   while (::read(signal_fd_, &info, sizeof info) == static_cast<ssize_t>(sizeof info)) {
     ++interrupts_;
-    if (interrupts_ == 1) {
-      diag_.error(fmt::format("interrupted: sending stops, waiting for {} lines in flight; "
-                              "press Ctrl-C again for an emergency stop (M112)",
-                              sender_.in_flight()));
-      sender_.cancel();
-      if (!input_done_) {
-        loop_.set_events(input_watch_, 0);
-        loop_.remove_fd(input_watch_);
-        input_done_ = true;
-      }
-    } else if (!sender_.emergency()) {
+    if (interrupts_ == 1 && control_->interrupt()) continue;
+    if (!sender_.emergency()) {
       diag_.error("emergency stop: M112 sent");
       sender_.emergency_stop();
     }
@@ -158,16 +210,53 @@ void SendSession::on_signal() {
   update();
 }
 
+ProgressSnapshot SendSession::snapshot() const {
+  ProgressSnapshot s;
+  const SenderStats& st = sender_.stats();
+  s.state = sender_.finished() ? std::string_view("done") : control_->state_label();
+  s.layer = control_->layer();
+  s.layers = std::max(total_layers_, pipeline_.tracker().layer_count());
+  if (input_size_ > 0) s.percent = 100.0 * static_cast<double>(input_bytes_) / static_cast<double>(input_size_);
+  s.lines = st.lines;
+  s.elapsed = st.print_start >= 0 ? EventLoop::now() - st.print_start : 0;
+  s.lines_per_second = s.elapsed > 0 ? static_cast<double>(st.lines) / s.elapsed : 0;
+  if (s.percent > 1 && s.elapsed > 0) s.eta = s.elapsed * (100 - s.percent) / s.percent;
+  s.speed = control_->speed();
+  s.temperatures = sender_.temperatures();
+  s.pauses = static_cast<int>(control_->pauses().size());
+  if (!control_->pauses().empty()) {
+    s.last_pause_mm = control_->pauses().back().latency_mm;
+    s.last_pause_s = control_->pauses().back().latency_s;
+    s.last_pause_layer = control_->pauses().back().layer;
+    s.last_paused_before = control_->pauses().back().paused_before_layer;
+  }
+  return s;
+}
+
+void SendSession::report(bool force) {
+  double now = EventLoop::now();
+  progress_->report(snapshot(), now, force);
+  next_report_ = now + progress_->interval();
+}
+
 void SendSession::update() {
+  feed_input();
   sender_.pump(EventLoop::now());
   flush_port();
+  control_->update(EventLoop::now());
+  if (progress_ && (control_->state_label() != shown_state_ || control_->layer() != shown_layer_)) {
+    shown_state_ = control_->state_label();
+    shown_layer_ = control_->layer();
+    progress_->report(snapshot(), EventLoop::now(), false);
+  }
   if (sender_.finished() && sender_.output().empty()) {
     loop_.stop();
     return;
   }
   if (port_watch_ >= 0)
     loop_.set_events(port_watch_, static_cast<short>(POLLIN | (sender_.output().empty() ? 0 : POLLOUT)));
-  if (!input_done_) loop_.set_events(input_watch_, sender_.wants_input() ? POLLIN : 0);
+  bool want = !input_eof_ && in_buf_.size() - in_pos_ < kLowWater;
+  if (input_watch_ >= 0) loop_.set_events(input_watch_, want ? POLLIN : 0);
 }
 
 }  // namespace gcode::serial

@@ -149,6 +149,30 @@ void Sender::enqueue(std::string_view command, std::uint64_t source_line, int la
   estimator_.add(line, move);
 }
 
+std::size_t Sender::withdraw_unsent(std::size_t max, const MachineState& before, std::vector<std::string>& commands) {
+  if (final_queued_ || cancelled_) return 0;
+  std::size_t n = std::min(max, pending());
+  if (n == 0) return 0;
+  for (long long k = next_number_ - static_cast<long long>(n); k < next_number_; ++k) {
+    // "N12 G1 X1*34\n" -> "G1 X1"
+    std::string_view wire = slot(k).wire;
+    std::size_t space = wire.find(' ');
+    std::size_t star = wire.rfind('*');
+    commands.emplace_back(wire.substr(space + 1, star - space - 1));
+  }
+  next_number_ -= static_cast<long long>(n);
+  // The estimator has seen them: their times are only estimates anyway.
+  machine_ = before;
+  return n;
+}
+
+std::size_t Sender::discard_unsent() {
+  if (final_queued_ || cancelled_) return 0;
+  std::size_t n = pending();
+  next_number_ = next_send_;
+  return n;
+}
+
 void Sender::end_of_input() {
   if (input_done_) return;
   input_done_ = true;
@@ -213,6 +237,7 @@ bool Sender::settled(double now) const {
 }
 
 void Sender::fill(double now) {
+  pace_wait_ = kNever;
   if (state_ != SenderState::Printing || paused_ || cancelled_) return;
   if (settling_) {
     if (!settled(now)) return;
@@ -231,6 +256,7 @@ void Sender::fill(double now) {
     // Our M105s hold bytes of the printer's buffer but no place in its
     // queue for long: it answers them as soon as they are read.
     if (!flow_.may_send(flight_lines(), flight_bytes_ + reserve, s.wire.size())) break;
+    if (config_.pace && s.move && paced(now)) break;
     out_ += s.wire;
     if (trace_)
       log(LogLevel::Trace, 0, fmt::format("-> {} @{:.6f}", std::string_view(s.wire).substr(0, s.wire.size() - 1), now));
@@ -274,6 +300,7 @@ void Sender::acknowledge_front(double now) {
   }
   const Slot& s = slot(f.number);
   clock_.answered(s.move ? s.motion : 0, now, s.move ? s.nominal : 0);
+  planned(s, now);
   if (f.number > last_acked_.number) {
     last_acked_.number = f.number;
     if (s.source_line != 0) {
@@ -475,6 +502,12 @@ void Sender::on_line(std::string_view text, double now) {
   last_any_rx_ = now;
   if (settling_) settle_from_ = std::max(settle_from_, now);
   Response r = parse_response(text);
+  if ((r.kind == ResponseKind::Temperature || r.has_temperature) && text.find_first_of("TB") != std::string_view::npos) {
+    std::string_view t = text.substr(text.find_first_of("TB"));
+    temperatures_.assign(t.substr(0, t.find(" @")));  // without the heater powers
+    for (char& c : temperatures_)
+      if (c == '"' || c == '\\' || static_cast<unsigned char>(c) < 0x20) c = ' ';  // kept JSON-safe
+  }
   // The "ok" of a rejected line comes right after its "Resend:"; anything
   // else in between means that ok was lost (or the firmware sends none).
   if (r.kind != ResponseKind::Ok && r.kind != ResponseKind::Resend && r.kind != ResponseKind::Empty)
@@ -507,6 +540,10 @@ void Sender::on_line(std::string_view text, double now) {
       break;
     case ResponseKind::Action:
       log(LogLevel::Warning, 0, fmt::format("printer action: {}", r.text));
+      if (on_action_) {
+        on_action_(r.text);
+        break;
+      }
       if (r.text.rfind("pause", 0) == 0 && r.text.rfind("paused", 0) != 0) paused_ = true;
       if (r.text.rfind("resume", 0) == 0 && r.text.rfind("resumed", 0) != 0) paused_ = false;
       if (r.text.rfind("cancel", 0) == 0) cancel();
@@ -556,6 +593,34 @@ double Sender::current_timeout() const {
   return t;
 }
 
+bool Sender::paced(double now) {
+  int moves = 0;
+  for (const Flight& f : flight_)
+    if (f.number > 0 && slot(f.number).move) ++moves;
+  std::size_t blocks = std::min(pace_ends_.size(), static_cast<std::size_t>(std::max(1, clock_.planner_blocks())));
+  int ahead = 0;
+  double first_end = kNever;
+  for (std::size_t i = 0; i < blocks; ++i) {
+    if (pace_ends_[i] > now) {
+      ++ahead;
+      first_end = std::min(first_end, pace_ends_[i]);
+    }
+  }
+  bool blocked = moves + ahead >= static_cast<int>(blocks);
+  // With nothing in flight no answer will come: wake when a block ends.
+  pace_wait_ = blocked && moves == 0 ? first_end : kNever;
+  return blocked;
+}
+
+void Sender::planned(const Slot& s, double now) {
+  if (!config_.pace || !s.move) return;
+  std::size_t blocks = std::min(pace_ends_.size(), static_cast<std::size_t>(std::max(1, clock_.planner_blocks())));
+  double scale = config_.time_scale > 0 ? config_.time_scale : 1;
+  pace_last_end_ = std::max(pace_last_end_, now) + s.nominal / scale;
+  pace_ends_[pace_next_ % blocks] = pace_last_end_;
+  pace_next_ = (pace_next_ + 1) % blocks;
+}
+
 bool Sender::probing() const {
   return std::any_of(flight_.begin(), flight_.end(), [](const Flight& f) { return f.number < 0; });
 }
@@ -599,7 +664,7 @@ double Sender::deadline() const {
   if (state_ == SenderState::Capabilities && caps_answered_) return last_any_rx_ + kQuietStart;
   if (state_ == SenderState::Handshake || state_ == SenderState::Capabilities)
     return std::min(handshake_retry_ + std::min(1.0, config_.timeout / 3), handshake_start_ + config_.timeout);
-  double d = kNever;
+  double d = pace_wait_;
   // (While paused or cancelled nothing is sent again: no timer for it.)
   if (settling_ && !lines_in_flight() && !paused_ && !cancelled_)
     d = std::max(settle_from_, last_any_rx_) + settle_quiet_;

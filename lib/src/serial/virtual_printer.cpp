@@ -406,11 +406,15 @@ void VirtualPrinter::add_block(double duration, double t) {
   }
   empty_since_ = -1;
   planner_.push_back(duration);
+  lengths_.push_back(pending_length_);
+  queued_length_ += pending_length_;
   ++stats_.moves;
 }
 
 void VirtualPrinter::planner_step(double t) {
   planner_.pop_front();
+  done_length_ += lengths_.front();
+  lengths_.pop_front();
   if (!planner_.empty()) {
     head_end_ = t + planner_.front();
   } else {
@@ -449,6 +453,11 @@ void VirtualPrinter::start(double t) {
     return;
   }
   wait_ = Wait::None;
+  if (c.number == watch_.number && !watch_.seen) {
+    watch_.seen = true;
+    watch_.motion_end = planner_.empty() ? std::max(0.0, stats_.last_move_end) : stats_.last_move_end;
+    watch_.queued_length = queued_length_;
+  }
   Line line = Line::parse(c.text);
   Move m = state_.apply(line);
   if (line.kind == CommandKind::Extended || line.kind == CommandKind::Host) {
@@ -461,6 +470,7 @@ void VirtualPrinter::start(double t) {
     if (length > 0) {
       double feed = m.feedrate > 0 ? m.feedrate : 1500;
       pending_duration_ = config_.instant_moves ? 0 : length / (feed / 60);
+      pending_length_ = m.length;
       if (planner_.size() >= static_cast<std::size_t>(config_.planner)) {
         wait_ = Wait::PlannerSlot;
         next_busy_ = t + kKeepalive;
@@ -586,6 +596,22 @@ void VirtualPrinter::finish(double t) {
   queue_.pop_front();
   if (spare_.size() > 8) spare_.pop_front();
   wait_ = Wait::None;
+}
+
+double VirtualPrinter::travelled(double t) const {
+  double path = done_length_;
+  double start = planner_.empty() ? t : head_end_ - planner_.front();
+  for (std::size_t i = 0; i < planner_.size(); ++i) {
+    double end = start + planner_[i];
+    if (t >= end) {
+      path += lengths_[i];
+    } else {
+      if (t > start && planner_[i] > 0) path += lengths_[i] * (t - start) / planner_[i];
+      break;
+    }
+    start = end;
+  }
+  return path;
 }
 
 double VirtualPrinter::starvation() const {

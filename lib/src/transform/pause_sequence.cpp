@@ -8,6 +8,7 @@
 
 #include "gcode/core/line_builder.hpp"
 #include "gcode/core/number.hpp"
+#include "gcode/core/text.hpp"
 
 namespace gcode {
 
@@ -24,22 +25,8 @@ std::string text_of(Fixed value, int decimals) {
 // file's own, so nothing is rounded).
 std::string exact_text(Fixed value) { return text_of(value, Fixed::kDecimals); }
 
-bool iequals(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    if (std::toupper(static_cast<unsigned char>(a[i])) != std::toupper(static_cast<unsigned char>(b[i]))) return false;
-  return true;
-}
-
 void add_text_lines(std::vector<std::string>& out, std::string_view text) {
-  while (!text.empty()) {
-    std::size_t nl = text.find('\n');
-    std::string_view one = text.substr(0, nl);
-    if (!one.empty() && one.back() == '\r') one.remove_suffix(1);
-    if (!one.empty()) out.emplace_back(one);
-    if (nl == std::string_view::npos) break;
-    text.remove_prefix(nl + 1);
-  }
+  for (std::string& line : split_lines(text)) out.push_back(std::move(line));
 }
 
 // Writes the E moves of a block in the file's own E mode, at the file's E

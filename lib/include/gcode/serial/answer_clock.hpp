@@ -88,6 +88,14 @@ class AnswerClock {
   double last_keepalive() const { return last_keepalive_; }
   // When the planner is empty, as far as the answers tell.
   double planner_empty() const { return last_end_; }
+  // Answered moves the model says have not ended by `now` (at most the
+  // planner's size): what the planner holds, as far as the answers tell.
+  int moves_ahead(double now) const {
+    int n = 0;
+    for (std::size_t i = 0; i < count_; ++i) n += ends_[i] > now ? 1 : 0;
+    return n;
+  }
+  int planner_blocks() const { return static_cast<int>(planner_); }
   // What the moves' estimated times are scaled by now.
   double motion_factor() const { return factor_; }
 

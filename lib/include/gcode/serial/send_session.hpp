@@ -1,19 +1,30 @@
 #pragma once
 // gc-send's pipeline in one event loop: G-code from the input runs through
-// the library's pipeline (pipeline.hpp: lines, state, layers, and any stages
-// a caller adds), whose last stage strips comments and hands commands to the
-// Sender; the Sender's bytes go to the port, the port's lines back to the
-// Sender. Ctrl-C once stops sending and waits for the lines in flight;
-// Ctrl-C twice sends M112 at once.
+// the library's pipeline (pipeline.hpp: lines, state, layers, the speed
+// stages of print_control.hpp), whose last stage hands commands to the
+// PrintControl and through it to the Sender; the Sender's bytes go to the
+// port, the port's lines back to the Sender; the control FIFO's commands go
+// to the PrintControl; a timer writes the progress.
+//
+// The input is fed to the pipeline one line at a time, and only while the
+// sender wants more: what a stage switched on mid-stream changes (the rush
+// of a pause) is what follows the request, not what was read long before.
+// Ctrl-C once cancels (a safe end); Ctrl-C twice sends M112 at once.
 #include <signal.h>
 
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <string>
 
 #include "gcode/core/diagnostics.hpp"
 #include "gcode/core/layer_marker.hpp"
+#include "gcode/core/print_area.hpp"
 #include "gcode/pipeline/pipeline.hpp"
+#include "gcode/serial/control_fifo.hpp"
 #include "gcode/serial/event_loop.hpp"
+#include "gcode/serial/print_control.hpp"
+#include "gcode/serial/progress.hpp"
 #include "gcode/serial/sender.hpp"
 
 namespace gcode::serial {
@@ -26,21 +37,37 @@ class SendSession : private Stage {
   SendSession(const SendSession&) = delete;
   SendSession& operator=(const SendSession&) = delete;
 
+  // The bed and height the file states (its header, or for a regular file
+  // its head and tail), before anything is sent.
+  PrintArea read_print_area();
+  // Pausing, cancelling, speed: before run(). `control_path` empty: no FIFO.
+  void set_control(const PrintControlConfig& config, const std::string& control_path);
+  void set_progress(const ProgressOptions& options) { progress_.emplace(options); }
+  // The layers of the whole input, when known beforehand (a regular file).
+  void set_total_layers(int layers) { total_layers_ = layers; }
+  PrintControl* control() { return control_.get(); }
+  const ControlFifo* fifo() const { return fifo_.get(); }
+
   // Runs until the sender is finished.
   void run();
-  std::uint64_t host_commands() const { return host_commands_; }
   std::uint64_t input_lines() const { return input_lines_; }
   int layers() const { return pipeline_.tracker().layer_count(); }
+  bool emergency() const { return interrupts_ > 1; }
 
  private:
-  // The last stage: what reaches it is sent.
+  // The last stage: what reaches it is sent (through the control).
   void line(const TrackedLine& t, Emitter& out) override;
-  bool reads_state() const override { return false; }
+  void layer(const LayerInfo& info, const MachineState& before, Emitter& out) override;
+  void end_code(const EndCodeInfo& info, const MachineState& before, Emitter& out) override;
+  bool reads_state() const override { return true; }
   void read_input();
+  void feed_input();
   void read_port();
   void flush_port();
   void on_signal();
   void update();
+  void report(bool force);
+  ProgressSnapshot snapshot() const;
 
   EventLoop& loop_;
   Sender& sender_;
@@ -51,14 +78,26 @@ class SendSession : private Stage {
   Diagnostics& diag_;
   LayerMarkers markers_;
   Pipeline pipeline_;
+  std::unique_ptr<PrintControl> control_;
+  std::unique_ptr<ControlFifo> fifo_;
+  std::unique_ptr<ControlParser> parser_;
+  std::optional<Progress> progress_;
   std::uint64_t input_lines_ = 0;
-  std::uint64_t host_commands_ = 0;
-  bool input_done_ = false;
+  std::uint64_t input_bytes_ = 0;   // fed to the pipeline
+  std::uint64_t input_size_ = 0;    // a regular file's size (0: unknown)
+  bool input_eof_ = false;
+  bool input_done_ = false;         // the pipeline has finished
+  std::string in_buf_;              // read, not yet fed
+  std::size_t in_pos_ = 0;
   std::string port_in_;       // a partial line from the printer
-  std::string scratch_;       // a command rebuilt without its paren comments
   int input_watch_ = -1;
   int port_watch_ = -1;
   int interrupts_ = 0;
+  double started_ = 0;
+  double next_report_ = 0;
+  std::string_view shown_state_;   // what the progress last showed
+  int shown_layer_ = -1;
+  int total_layers_ = 0;
 };
 
 }  // namespace gcode::serial

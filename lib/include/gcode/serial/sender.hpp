@@ -53,6 +53,8 @@
 //    skip_bad_lines); an input without a command is a failure, not a print;
 //  * the end: after the last line, "M400" and its "ok" (the printer is idle).
 #include <cstdint>
+#include <algorithm>
+#include <array>
 #include <deque>
 #include <functional>
 #include <string>
@@ -81,6 +83,17 @@ struct SenderConfig {
   std::size_t max_line = kDefaultMaxLine;  // Marlin MAX_CMD_SIZE
   bool max_line_from_firmware = true;      // an M115 report replaces max_line
   bool skip_bad_lines = false;             // leave out lines the firmware cannot take
+  std::size_t read_ahead = 512;  // commands taken ahead of what is sent (gc-send: a few, so a
+                                 // stage switched on mid-stream changes what follows at once)
+  // Hold no more moves ahead of the nozzle than the printer's planner takes:
+  // a move goes out only while the moves in flight and those the planner
+  // still holds are fewer than its blocks. What the planner holds comes
+  // from the answers: each answered move entered it then, and runs for its
+  // length at its feed rate after the one before (the fastest it can go,
+  // so the count never runs high and the planner is never starved by it).
+  // So a pause stops after what the planner holds (background.md §1:
+  // 16 x 0.2 mm), and the printer still never waits for a line.
+  bool pace = false;
   bool handshake = true;     // M110 N0 + M115 before the first line
   bool finish_with_m400 = true;
 };
@@ -141,7 +154,9 @@ class Sender : private TimeSink {
   // Input: commands as they go to the firmware (see command_for_sending).
   // Taken once the handshake is done, so they are checked against what the
   // firmware reported (its MAX_CMD_SIZE).
-  bool wants_input() const { return state_ == SenderState::Printing && !input_done_ && pending() < kHighWater; }
+  bool wants_input() const {
+    return state_ == SenderState::Printing && !input_done_ && pending() < std::min(kHighWater, config_.read_ahead);
+  }
   void submit(std::string_view command, std::uint64_t source_line, int layer);
   void end_of_input();
   // Sends what the flow control allows now; call after submit/end_of_input.
@@ -159,6 +174,29 @@ class Sender : private TimeSink {
 
   // The port went away (unplugged board, closed pseudo-terminal).
   void disconnected(std::string_view why);
+
+  // The printer's host actions (//action:pause, //action:resume); without a
+  // handler a pause holds sending until the resume.
+  using ActionHandler = std::function<void(std::string_view action)>;
+  void set_action_handler(ActionHandler handler) { on_action_ = std::move(handler); }
+  // Nothing waits to be sent and nothing is in flight.
+  bool idle() const { return pending() == 0 && flight_.empty() && output().empty(); }
+  // The number the last submitted command got (0: none yet).
+  long long last_submitted() const { return next_number_ - 1; }
+  long long highest_sent() const { return highest_sent_; }
+  // The printer's last temperature report ("T:205.00 /205.00 B:60.00 /60.00"; "" before one).
+  const std::string& temperatures() const { return temperatures_; }
+
+  // Takes back the newest commands not sent yet, at most `max` (a pause now
+  // goes before them; they are submitted again after it): appended to
+  // `commands` in order. `before` is the machine state before the first of
+  // them (the sender's own model of the stream goes back to it). Returns
+  // how many.
+  std::size_t withdraw_unsent(std::size_t max, const MachineState& before, std::vector<std::string>& commands);
+
+  // A cancel's safe end goes right after what is on its way: every command
+  // handed over but not sent yet is dropped. Returns how many.
+  std::size_t discard_unsent();
 
   // First Ctrl-C: send nothing more, wait for the lines in flight.
   void cancel();
@@ -237,6 +275,8 @@ class Sender : private TimeSink {
   bool lines_in_flight() const;
   std::size_t flight_lines() const;
   bool probing() const;
+  bool paced(double now);
+  void planned(const Slot& s, double now);
   void log(LogLevel level, std::uint64_t input_line, std::string_view message) const;
 
   SenderConfig config_;
@@ -290,6 +330,14 @@ class Sender : private TimeSink {
   SenderStats stats_;
   std::string failure_;
   bool trace_ = false;
+  ActionHandler on_action_;
+  std::string temperatures_;
+  // Pacing: when the last answered moves end at the earliest (ring of the
+  // planner's size), and when a blocked move may go.
+  std::array<double, 64> pace_ends_{};
+  std::size_t pace_next_ = 0;
+  double pace_last_end_ = 0;
+  double pace_wait_ = 1e300;
 };
 
 }  // namespace gcode::serial

@@ -108,6 +108,20 @@ class VirtualPrinter {
   // from the first move to the last.
   double starvation() const;
 
+  // Exact figures for a pause (gc-send's latency report): the nozzle's path
+  // length (XYZ) travelled by simulated time `t` (not before the last
+  // event), and, for the command numbered `number`, when the motion ahead of
+  // it ended and how long a path had been queued before it started.
+  double travelled(double t) const;
+  struct Watch {
+    long long number = -1;
+    bool seen = false;
+    double motion_end = 0;
+    double queued_length = 0;
+  };
+  void watch(long long number) { watch_ = Watch{number, false, 0, 0}; }
+  const Watch& watched() const { return watch_; }
+
  private:
   enum class Wait : std::uint8_t { None, PlannerSlot, PlannerEmpty, Dwell, Heating, Homing, Stall };
   struct Command {
@@ -167,6 +181,11 @@ class VirtualPrinter {
   bool ok_sent_ = false;        // M105 answers on its ok line
 
   std::deque<double> planner_;  // durations; the front one runs
+  std::deque<double> lengths_;  // their path lengths
+  double pending_length_ = 0;   // of a move waiting for a planner block
+  double done_length_ = 0;      // path of the blocks finished
+  double queued_length_ = 0;    // path of every block added
+  Watch watch_;
   double head_end_ = 0;
   double empty_since_ = -1;
   bool waited_while_empty_ = false;

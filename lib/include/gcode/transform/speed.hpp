@@ -112,6 +112,8 @@ class SpeedStage : public Stage {
   // its original speed back (or the firmware factor is restored).
   void set_enabled(bool on) override;
 
+  // A new factor from the next move on (gc-send's `speed F`).
+  void change_factor(double factor) { set_factor(Fixed::from_double(factor)); }
   // Whether the output runs at another speed than the input right now.
   bool changing() const { return differs_ || m220_percent_ != 100; }
   const SpeedStats& stats() const { return stats_; }

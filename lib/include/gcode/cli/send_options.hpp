@@ -1,0 +1,34 @@
+#pragma once
+// gc-send's options, in groups: the link (port, baud, flow control, the
+// firmware's buffers, timeouts, line limits), control (the FIFO, the rush
+// of a pause, in-stream pauses, cancel), progress, and the pause block's
+// options shared with gc-pause-at (pause_options.hpp).
+#include <string>
+
+#include "gcode/cli/pause_options.hpp"
+#include "gcode/cli/tool.hpp"
+#include "gcode/serial/send_job.hpp"
+
+namespace gcode::cli {
+
+struct SendOptions {
+  serial::SendJob job;
+  PauseOptions pause;
+  std::string flow = "window";
+  int queue = 4, rx_buffer = 128, max_timeouts = 5;
+  int max_line = 96;
+  double timeout = 10;
+  std::string control;      // --control PATH
+  bool no_control = false;
+  std::string pause_on;     // M0,M1,...
+  std::string cancel_gcode;
+  bool no_pace = false;
+  bool list_ports = false;
+  double interval = 5;
+};
+
+void add_send_options(Tool& tool, SendOptions& options);
+// After parsing: checks (UsageError) and fills options.job.
+void resolve_send_options(Tool& tool, SendOptions& options);
+
+}  // namespace gcode::cli

@@ -1,0 +1,191 @@
+#pragma once
+// What gc-send does with a print while it runs: pause and resume, cancel,
+// speed, commands typed while paused. It sits at the end of the pipeline
+// (send_session.hpp hands it every line with its state) and in front of the
+// Sender, and holds lines back while the print is paused.
+//
+// pause      the rest of the current layer is rushed (a speed stage switched
+//            on now, off at the layer's end: --rush, capped by --max-speed and
+//            --max-flow); at the next layer event, before any line of the next
+//            layer, the pause block of pause_sequence.hpp goes out (retract,
+//            lift, park at the back, standby); then nothing until resume. In
+//            the start code the pause comes before layer 1; in the end code at
+//            once.
+// pause now  the pause block goes out after the last command handed to the
+//            sender: what the printer already holds still runs, nothing more.
+// resume     the resume block (heat, back at the safe height, down to the
+//            exact Z, unretract, E coordinate, modes, F); first, whatever the
+//            commands typed while paused changed (position, modes, E,
+//            temperature) is put back the way the block expects it.
+// In-stream pauses (@pause, ;@pause, --pause-on M0,...) are the file's own:
+// whatever the file does around them (gc-pause-at writes its park and
+// return there) is sent as it is; the host only holds the lines after it.
+//
+// The printer's own //action:pause (its pause button with host actions) is a
+// `pause`, //action:resume a `resume`, //action:cancel a `cancel`.
+#include <array>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "gcode/core/diagnostics.hpp"
+#include "gcode/core/line_builder.hpp"
+#include "gcode/pipeline/pipeline.hpp"
+#include "gcode/serial/control_fifo.hpp"
+#include "gcode/serial/sender.hpp"
+#include "gcode/transform/pause_context.hpp"
+#include "gcode/transform/speed.hpp"
+
+namespace gcode::serial {
+
+struct PrintControlConfig {
+  PauseConfig pause;            // the block (method None: gc-send waits itself)
+  ParkRules park;               // where (the file's bed unless --park/--bed)
+  double rush = 3;              // the rest of the layer after a pause request
+  double max_speed = 0;         // caps on the rush, mm/s (0: none)
+  double max_flow = 0;          // mm^3/s
+  double filament_diameter = 1.75;
+  std::vector<int> pause_on;    // M numbers handled as host pauses, not sent
+  std::string cancel_gcode = "M104 S0\nM140 S0\nM107\nM84";  // after the park of a cancel
+};
+
+enum class PrintState : std::uint8_t { Printing, Pausing, Paused, Cancelling };
+std::string_view print_state_name(PrintState state);
+
+// Exact figures a simulated printer can give about a pause (optional).
+struct MotionProbe {
+  std::function<double()> now;                 // printer seconds
+  std::function<double(double)> travelled;     // path (mm) travelled by then
+  std::function<void(long long)> watch;        // the first command of the pause block
+  // When the motion ahead of the watched command ended and the path queued
+  // before it; false while it has not run yet.
+  std::function<bool(double&, double&)> watched;
+};
+
+// One pause, for the summary and the status.
+struct PauseRecord {
+  std::string request;          // "pause", "pause now", "@pause", "//action:pause"
+  int layer = 0;                // the layer the request came in
+  int paused_before_layer = 0;  // the block went before this layer (0: mid-layer or end code)
+  std::uint64_t input_line = 0; // the last input line sent before the block
+  double wall_request = 0;      // when the request came (monotonic)
+  double wall_paused = -1;      // when the printer had done the block
+  double printer_request = -1;  // MotionProbe: printer time of the request
+  double latency_s = -1;        // MotionProbe: from the request to the motion's end
+  double latency_mm = -1;       // MotionProbe: the path the nozzle went meanwhile
+  long long block_number = 0;   // the block's first line number
+  bool block = false;           // gc-send's own block (not the file's pause)
+  double path_at_request = -1;  // MotionProbe: the path travelled by the request
+};
+
+class PrintControl {
+ public:
+  PrintControl(const PrintControlConfig& config, Sender& sender, Diagnostics& diagnostics, const Precision& precision);
+
+  // The speed stages (`speed F`, the rush), to be added to the pipeline
+  // before the sending stage, in this order.
+  void add_stages(Pipeline& pipeline);
+  void set_probe(MotionProbe probe) { probe_ = std::move(probe); }
+
+  // From the sending stage: every line, layer start and the end code.
+  void line(const TrackedLine& t);
+  void layer(const LayerInfo& info, const MachineState& before);
+  void end_code(const MachineState& before);
+  // The input has ended (everything held is sent once resumed).
+  void end_of_input();
+
+  // Whether the sending stage may take more input (not holding).
+  bool accepts_input() const { return !holding_ && state_ != PrintState::Cancelling; }
+  // Whether the sender may be told the input has ended.
+  bool input_may_end() const { return !holding_ && held_.empty(); }
+
+  void command(const ControlCommand& c);
+  // The printer's //action: text.
+  void action(std::string_view text);
+  // Ctrl-C: the first cancels; returns false from the second on.
+  bool interrupt();
+  // Call after the sender moved: notes when a pause block is done.
+  void update(double now);
+
+  PrintState state() const { return state_; }
+  // "paused" only once the printer has done the block.
+  std::string_view state_label() const;
+  int layer() const { return layer_; }
+  const std::vector<PauseRecord>& pauses() const { return pauses_; }
+  bool cancelled() const { return state_ == PrintState::Cancelling; }
+  std::uint64_t user_commands() const { return user_commands_; }
+  std::uint64_t host_commands() const { return host_commands_; }
+  double speed() const { return speed_; }
+  // Called for `status` and when a pause is reached.
+  std::function<void()> on_status;
+
+ private:
+  struct Held {
+    std::string command;     // as sent ("" for an in-stream pause)
+    std::uint64_t source = 0;
+    int layer = 0;
+    MachineState after;
+    bool host_pause = false;
+  };
+  // The last commands handed to the sender, for a pause now that takes
+  // back those not sent yet.
+  struct Recent {
+    MachineState before;
+    PauseContext context;
+    std::uint64_t source = 0;
+    int layer = 0;
+  };
+  static constexpr std::size_t kRecent = 16;
+  void process(std::string_view command, std::uint64_t source, int layer, const MachineState& after, bool host_pause);
+  void submit_lines(const std::vector<std::string>& lines, int layer);
+  void track(std::string_view line, MachineState& state) const;
+  void request_pause(std::string request, bool now);
+  void pause_here(const MachineState& at);
+  void hold_here(std::string request);
+  void resume();
+  void cancel();
+  void user_gcode(const std::string& text);
+  void insert_file(const std::string& path);
+  void set_speed(double factor);
+  void withdraw_unsent();
+  std::vector<std::string> put_back(const MachineState& from, const MachineState& to) const;
+  void report_status();
+  PauseRecord& start_record(std::string request);
+
+  PrintControlConfig config_;
+  Sender& sender_;
+  Diagnostics& diag_;
+  const Precision& precision_;
+  SpeedStage user_speed_;
+  SpeedStage rush_;
+  PauseContext context_;
+  MotionProbe probe_;
+
+  PrintState state_ = PrintState::Printing;
+  bool holding_ = false;
+  bool own_block_ = false;       // the pause is ours (a block to undo), not the file's
+  bool input_ended_ = false;
+  int layer_ = 0;
+  Region region_ = Region::StartCode;
+  int interrupts_ = 0;
+  MachineState last_;            // after the last command handed to the sender
+  MachineState expected_;        // what the resume starts from (the block's end, or the pause point)
+  MachineState paused_;          // the printer while paused, with the commands typed since
+  std::vector<std::string> resume_lines_;
+  double safe_z_ = 0;
+  std::deque<Held> held_;
+  std::array<Recent, kRecent> recent_;
+  std::size_t recent_count_ = 0;     // entries ever written (the newest at (count - 1) % kRecent)
+  PauseContext context_before_;      // before the line being handled
+  std::string scratch_;
+  std::vector<PauseRecord> pauses_;
+  std::uint64_t user_commands_ = 0;
+  std::uint64_t host_commands_ = 0;
+  double speed_ = 1;
+  std::uint64_t last_source_ = 0;
+};
+
+}  // namespace gcode::serial

@@ -1,0 +1,64 @@
+#pragma once
+// gc-send's progress: on a terminal one live line on stderr, rewritten in
+// place; elsewhere a plain line every few seconds; and, when asked, the same
+// figures as JSON in a status file, rewritten atomically (temp file +
+// rename) so a reader never sees half of it.
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace gcode::serial {
+
+struct ProgressSnapshot {
+  std::string_view state;       // printing, pausing, paused, cancelling, done
+  int layer = 0;                // 0: start code
+  int layers = 0;               // as far as known
+  double percent = -1;          // of the input's bytes (-1: unknown, a pipe)
+  std::uint64_t lines = 0;      // numbered lines sent
+  double lines_per_second = 0;
+  double elapsed = 0;           // seconds since the first line
+  double eta = -1;              // seconds (-1: unknown)
+  double speed = 1;             // `speed F`
+  std::string_view temperatures;  // the printer's last report
+  int pauses = 0;
+  double last_pause_mm = -1;    // the last pause's latency (a simulated printer tells)
+  double last_pause_s = -1;
+  int last_pause_layer = 0;     // the layer the last pause was asked in
+  int last_paused_before = 0;   // the layer it paused before (0: mid-layer)
+};
+
+enum class ProgressMode : std::uint8_t { Off, Live, Plain };
+
+struct ProgressOptions {
+  ProgressMode mode = ProgressMode::Off;
+  double interval = 5;          // seconds between plain lines (a live line: 0.25)
+  std::string status_file;      // "" = none
+};
+
+// "printing  layer 12/40  31.0 %  812 lines/s  0:42 elapsed  ETA 1:33"
+std::string progress_line(const ProgressSnapshot& s);
+std::string progress_json(const ProgressSnapshot& s);
+
+class Progress {
+ public:
+  explicit Progress(ProgressOptions options);
+  ~Progress();  // ends a live line
+  // Writes the line (when its interval has passed, or `force`) and the
+  // status file (when the snapshot changed state or layer, or `force`).
+  void report(const ProgressSnapshot& s, double now, bool force);
+  // `status`: the line on stderr whatever the mode (for the status command).
+  void print_line(const ProgressSnapshot& s);
+  double interval() const;
+
+ private:
+  void write_status(const ProgressSnapshot& s);
+
+  ProgressOptions options_;
+  double last_line_ = -1e300;
+  bool live_shown_ = false;
+  std::string last_state_;
+  int last_layer_ = -1;
+  double last_status_ = -1e300;
+};
+
+}  // namespace gcode::serial

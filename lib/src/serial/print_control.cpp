@@ -1,0 +1,505 @@
+#include "gcode/serial/print_control.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "gcode/core/line.hpp"
+#include "gcode/core/number.hpp"
+#include "gcode/core/placeholders.hpp"
+#include "gcode/core/text.hpp"
+#include "gcode/transform/custom_gcode.hpp"
+#include "gcode/serial/event_loop.hpp"
+#include "gcode/serial/protocol.hpp"
+
+namespace gcode::serial {
+
+namespace {
+
+SpeedOptions speed_options(double factor, bool travel, const PrintControlConfig& c) {
+  SpeedOptions o;
+  o.factor = factor;
+  o.travel = travel;
+  o.max_speed = c.max_speed;
+  o.max_flow = c.max_flow;
+  o.filament_diameter = c.filament_diameter;
+  o.mark.clear();  // comments do not reach the printer
+  return o;
+}
+
+std::string exact(Fixed v) {
+  char buffer[kMaxNumberChars];
+  return std::string(buffer, v.format(Fixed::kDecimals, buffer));
+}
+
+}  // namespace
+
+std::string_view print_state_name(PrintState state) {
+  switch (state) {
+    case PrintState::Printing: return "printing";
+    case PrintState::Pausing: return "pausing";
+    case PrintState::Paused: return "paused";
+    case PrintState::Cancelling: return "cancelling";
+  }
+  return "?";
+}
+
+PrintControl::PrintControl(const PrintControlConfig& config, Sender& sender, Diagnostics& diagnostics,
+                           const Precision& precision)
+    : config_(config),
+      sender_(sender),
+      diag_(diagnostics),
+      precision_(precision),
+      user_speed_(speed_options(1, true, config), precision),
+      rush_(speed_options(std::max(1.0, config.rush), false, config), precision) {
+  config_.pause.method = PauseMethod::None;
+  user_speed_.set_enabled(false);
+  rush_.set_enabled(false);
+}
+
+void PrintControl::add_stages(Pipeline& pipeline) {
+  pipeline.add(user_speed_);
+  pipeline.add(rush_);
+}
+
+std::string_view PrintControl::state_label() const {
+  if (state_ == PrintState::Paused && !pauses_.empty() && pauses_.back().wall_paused < 0) return "pausing";
+  return print_state_name(state_);
+}
+
+void PrintControl::line(const TrackedLine& t) {
+  const Line& line = t.line;
+  region_ = t.region;
+  if (t.layer > 0) layer_ = t.layer;
+  context_before_ = context_;
+  context_.observe(t);
+  bool host_pause = false;
+  if (line.kind == CommandKind::None && !line.malformed) {
+    // ";@pause": a comment only for the slicer, a pause for the host.
+    if (!iequals(line.comment_text(), "@pause")) return;
+    host_pause = true;
+  } else if (line.kind == CommandKind::Host) {
+    ++host_commands_;
+    if (!iequals(line.code(), "@pause")) {
+      diag_.info(fmt::format("line {}: host command '{}' not sent to the printer", t.raw.number, line.code()));
+      return;
+    }
+    host_pause = true;
+  } else if (line.letter == 'M' && std::find(config_.pause_on.begin(), config_.pause_on.end(), line.number) !=
+                                       config_.pause_on.end()) {
+    ++host_commands_;
+    host_pause = true;
+  }
+  std::string_view command;
+  if (!host_pause) {
+    command = command_for_sending(line, scratch_);
+    if (command.empty()) return;
+    if (line.is_m(110)) {
+      diag_.warn(t.raw.number, "M110 not sent: gc-send numbers the lines itself");
+      return;
+    }
+  }
+  process(command, t.raw.number, t.layer, t.state, host_pause);
+}
+
+void PrintControl::process(std::string_view command, std::uint64_t source, int layer, const MachineState& after,
+                           bool host_pause) {
+  if (holding_) {
+    if (state_ == PrintState::Cancelling) return;
+    held_.push_back(Held{std::string(command), source, layer, after, host_pause});
+    return;
+  }
+  if (host_pause) {
+    last_source_ = source;
+    hold_here(fmt::format("the file's pause at line {}", source));
+    return;
+  }
+  Recent& r = recent_[recent_count_++ % kRecent];
+  r.before = last_;
+  r.context = context_before_;
+  r.source = source;
+  r.layer = layer;
+  sender_.submit(command, source, layer);
+  last_ = after;
+  last_source_ = source;
+}
+
+void PrintControl::layer(const LayerInfo& info, const MachineState& before) {
+  layer_ = info.index;
+  region_ = Region::Layer;
+  if (state_ != PrintState::Pausing) return;
+  rush_.set_enabled(false);
+  pauses_.back().paused_before_layer = info.index;
+  pause_here(before);
+}
+
+void PrintControl::end_code(const MachineState& before) {
+  region_ = Region::EndCode;
+  if (state_ != PrintState::Pausing) return;
+  rush_.set_enabled(false);
+  pause_here(before);
+}
+
+void PrintControl::end_of_input() {
+  input_ended_ = true;
+  // A file cut short (no next layer, no end code): the pause goes at its end.
+  if (state_ != PrintState::Pausing) return;
+  rush_.set_enabled(false);
+  pause_here(last_);
+}
+
+PauseRecord& PrintControl::start_record(std::string request) {
+  PauseRecord r;
+  r.request = std::move(request);
+  r.layer = layer_;
+  r.wall_request = EventLoop::now();
+  if (probe_.now) {
+    r.printer_request = probe_.now();
+    diag_.info(fmt::format("{}: asked at printer time {:.6f} s", r.request, r.printer_request));
+  }
+  pauses_.push_back(std::move(r));
+  return pauses_.back();
+}
+
+void PrintControl::request_pause(std::string request, bool now) {
+  if (state_ == PrintState::Cancelling) return;
+  if (state_ == PrintState::Pausing && now) {
+    // Escalated: no need to finish the layer any more.
+    rush_.set_enabled(false);
+    withdraw_unsent();
+    pause_here(last_);
+    return;
+  }
+  if (state_ != PrintState::Printing) {
+    diag_.info(fmt::format("{}: already {}", request, state_label()));
+    return;
+  }
+  PauseRecord& r = start_record(request);
+  if (probe_.travelled && r.printer_request >= 0) r.path_at_request = probe_.travelled(r.printer_request);
+  if (now || region_ == Region::EndCode) {
+    withdraw_unsent();
+    pause_here(last_);
+    return;
+  }
+  state_ = PrintState::Pausing;
+  if (region_ == Region::Layer && config_.rush > 1) {
+    rush_.set_enabled(true);
+    diag_.info(fmt::format("{}: finishing layer {} at {:g} times the speed (after input line {})", request, layer_,
+                           config_.rush, last_source_));
+  } else {
+    diag_.info(fmt::format("{}: pausing before layer 1", request));
+  }
+}
+
+// Commands handed to the sender but not on their way yet go after the pause
+// block: they become the first held lines, and the stream's state and the
+// pause context go back to before them.
+void PrintControl::withdraw_unsent() {
+  // Only the commands of the file since the last block are known here, and
+  // the one before the first taken back must be too (what was sent last).
+  if (recent_count_ < 2) return;
+  std::size_t n = std::min({recent_count_ - 1, kRecent - 1, sender_.pending()});
+  if (n == 0) return;
+  const Recent& first = recent_[(recent_count_ - n) % kRecent];
+  std::vector<std::string> commands;
+  if (sender_.withdraw_unsent(n, first.before, commands) != n) return;
+  std::deque<Held> back;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::size_t k = recent_count_ - n + i;
+    const Recent& r = recent_[k % kRecent];
+    const MachineState& after = i + 1 < n ? recent_[(k + 1) % kRecent].before : last_;
+    back.push_back(Held{commands[i], r.source, r.layer, after, false});
+  }
+  for (auto it = held_.begin(); it != held_.end(); ++it) back.push_back(std::move(*it));
+  held_.swap(back);
+  last_ = first.before;
+  context_ = first.context;
+  last_source_ = recent_[(recent_count_ - n - 1) % kRecent].source;
+  recent_count_ -= n;
+  diag_.info(fmt::format("pause now: {} commands not sent yet go after the pause", n));
+}
+
+void PrintControl::pause_here(const MachineState& at) {
+  PauseRecord& r = pauses_.back();
+  PauseConfig c = config_.pause;
+  char zt[kMaxNumberChars];
+  Placeholders values{{"layer", std::to_string(std::max(layer_, 1))}, {"z", std::string(number_text(at.position[kZ], 3, zt))}};
+  for (std::string* text : {&c.message, &c.host_message, &c.before_wait, &c.after_wait})
+    *text = expand_placeholders(*text, values);
+  PauseBlock block;
+  try {
+    config_.park.place(context_, precision_, c);
+    block = build_pause(context_.point(at, &precision_), c);
+  } catch (const std::exception& e) {
+    diag_.warn(0, fmt::format("{}: cannot park ({}); holding the print where it is", r.request, e.what()));
+    hold_here(r.request);
+    return;
+  }
+  r.input_line = last_source_;
+  r.block_number = sender_.last_submitted() + 1;
+  r.block = true;
+  if (probe_.watch) probe_.watch(r.block_number);
+  submit_lines(block.pause, layer_);
+  expected_ = at;
+  for (const std::string& l : block.pause) track(l, expected_);
+  paused_ = expected_;
+  resume_lines_ = std::move(block.resume);
+  safe_z_ = block.safe_z;
+  holding_ = true;
+  own_block_ = true;
+  state_ = PrintState::Paused;
+  diag_.info(fmt::format("{}: pause block sent after input line {} (asked in layer {}); waiting for resume",
+                         r.request, last_source_, r.layer));
+}
+
+void PrintControl::hold_here(std::string request) {
+  if (state_ == PrintState::Printing || pauses_.empty()) start_record(std::move(request));
+  PauseRecord& r = pauses_.back();
+  r.input_line = last_source_;
+  r.block_number = sender_.last_submitted() + 1;
+  expected_ = last_;
+  paused_ = last_;
+  resume_lines_.clear();
+  holding_ = true;
+  own_block_ = false;
+  state_ = PrintState::Paused;
+  diag_.info(fmt::format("{}: holding after input line {} (layer {}); waiting for resume", r.request, last_source_,
+                         layer_));
+}
+
+void PrintControl::submit_lines(const std::vector<std::string>& lines, int layer) {
+  recent_count_ = 0;  // the newest commands are no longer the file's
+  for (const std::string& l : lines) sender_.submit(l, 0, layer);
+}
+
+void PrintControl::track(std::string_view text, MachineState& state) const {
+  Line l = Line::parse(text);
+  state.apply(l);
+}
+
+// Lines that take the printer from `from` (where the commands typed while
+// paused left it) back to `to` (where the resume starts): the same modes, E
+// coordinate, temperature, feed rate, and position reached at a safe height.
+std::vector<std::string> PrintControl::put_back(const MachineState& from, const MachineState& to) const {
+  std::vector<std::string> out;
+  MachineState now = from;
+  auto emit = [&](std::string line) {
+    track(line, now);
+    out.push_back(std::move(line));
+  };
+  bool moved = false;
+  for (int a : {kX, kY, kZ})
+    if (to.known[static_cast<std::size_t>(a)] && now.at(a) != to.at(a)) moved = true;
+  const int fd = precision_.of('F');
+  if (moved) {
+    if (now.relative_xyz) emit("G90");
+    Fixed high = std::max({now.at(kZ), to.at(kZ), Fixed::from_double(context_.top_z() + config_.pause.lift)});
+    char b[kMaxNumberChars];
+    std::string zf(number_text(config_.pause.z_speed * 60, fd, b));
+    std::string xyf(number_text(config_.pause.travel_speed * 60, fd, b));
+    if (high != now.at(kZ)) emit("G1 Z" + exact(high) + " F" + zf);
+    emit("G1 X" + exact(to.at(kX)) + " Y" + exact(to.at(kY)) + " F" + xyf);
+    if (high != to.at(kZ)) emit("G1 Z" + exact(to.at(kZ)) + " F" + zf);
+  }
+  if (now.relative_xyz != to.relative_xyz) emit(to.relative_xyz ? "G91" : "G90");
+  if (now.relative_e != to.relative_e) emit(to.relative_e ? "M83" : "M82");
+  if (now.at(kE) != to.at(kE)) emit("G92 E" + exact(to.at(kE)));
+  for (std::size_t t = 0; t < to.hotend_target.size(); ++t) {
+    if (now.hotend_target[t] == to.hotend_target[t] || to.hotend_target[t] <= 0) continue;
+    LineBuilder b;
+    b.start("M109");
+    if (static_cast<int>(t) != now.tool) b.word('T', static_cast<double>(t), 0);
+    b.word(now.hotend_target[t] > to.hotend_target[t] ? 'R' : 'S', to.hotend_target[t], 1);
+    emit(std::string(b.view()));
+  }
+  if (to.feedrate > 0 && now.feedrate != to.feedrate) emit("G1 F" + exact(Fixed::from_double(to.feedrate)));
+  return out;
+}
+
+void PrintControl::resume() {
+  if (state_ == PrintState::Pausing) {
+    rush_.set_enabled(false);
+    state_ = PrintState::Printing;
+    pauses_.pop_back();
+    diag_.info("resume: the pause asked for is called off");
+    return;
+  }
+  if (state_ != PrintState::Paused) {
+    diag_.info("resume: not paused");
+    return;
+  }
+  std::vector<std::string> lines = put_back(paused_, expected_);
+  if (!lines.empty())
+    diag_.info(fmt::format("resume: {} lines put back what the commands typed while paused changed", lines.size()));
+  if (own_block_) lines.insert(lines.end(), resume_lines_.begin(), resume_lines_.end());
+  submit_lines(lines, layer_);
+  resume_lines_.clear();
+  if (pauses_.back().wall_paused < 0) pauses_.back().wall_paused = EventLoop::now();
+  state_ = PrintState::Printing;
+  holding_ = false;
+  diag_.info(fmt::format("resume: printing on from input line {}", last_source_ + 1));
+  std::deque<Held> pending;
+  pending.swap(held_);
+  for (const Held& h : pending) process(h.command, h.source, h.layer, h.after, h.host_pause);
+}
+
+void PrintControl::cancel() {
+  if (state_ == PrintState::Cancelling) return;
+  bool parked = state_ == PrintState::Paused && own_block_;
+  const MachineState& at = state_ == PrintState::Paused ? paused_ : last_;
+  rush_.set_enabled(false);
+  held_.clear();
+  // Nothing more of the file: what the sender holds unsent would otherwise
+  // go out before the safe end (a file read far ahead, the start code).
+  std::size_t dropped = sender_.discard_unsent();
+  if (dropped > 0) diag_.info(fmt::format("cancel: {} commands not sent yet are left out", dropped));
+  std::vector<std::string> lines;
+  if (!parked) {
+    PauseConfig c = config_.pause;
+    c.standby = false;
+    c.message.clear();
+    c.host_message.clear();
+    c.before_wait.clear();
+    c.unload = 0;
+    c.beep = false;
+    c.stepper_hold = 0;
+    try {
+      config_.park.place(context_, precision_, c);
+      lines = build_pause(context_.point(at, &precision_), c).pause;
+    } catch (const std::exception& e) {
+      diag_.warn(0, fmt::format("cancel: cannot park ({}); heaters and motors off where the head is", e.what()));
+    }
+  }
+  for (std::string& l : split_lines(config_.cancel_gcode)) lines.push_back(std::move(l));
+  state_ = PrintState::Cancelling;
+  holding_ = true;
+  submit_lines(lines, layer_);
+  sender_.end_of_input();
+  diag_.error(fmt::format("cancelled after input line {} (layer {}): {}", last_source_, layer_,
+                          parked ? "heaters and motors off" : "retract, lift, park, heaters and motors off"));
+}
+
+bool PrintControl::interrupt() {
+  ++interrupts_;
+  if (interrupts_ > 1) return false;
+  diag_.error("interrupted: cancelling (safe end); press Ctrl-C again for an emergency stop (M112)");
+  cancel();
+  return true;
+}
+
+void PrintControl::user_gcode(const std::string& text) {
+  if (state_ != PrintState::Paused) {
+    diag_.warn(0, fmt::format("gcode '{}': only while paused (now {})", text, state_label()));
+    return;
+  }
+  Line line = Line::parse(text);
+  std::string_view command = command_for_sending(line, scratch_);
+  if (command.empty() || line.kind == CommandKind::Host || line.is_m(110)) {
+    diag_.warn(0, fmt::format("gcode '{}': not a command for the printer", text));
+    return;
+  }
+  std::string copy(command);
+  recent_count_ = 0;
+  sender_.submit(copy, 0, layer_);
+  track(copy, paused_);
+  ++user_commands_;
+  diag_.info(fmt::format("gcode: {} sent", copy));
+}
+
+// insert FILE: its commands go out while paused, followed like typed ones,
+// so the resume still returns exactly (a structure printed on the top
+// surface, a purge somewhere else).
+void PrintControl::insert_file(const std::string& path) {
+  if (state_ != PrintState::Paused) {
+    diag_.warn(0, fmt::format("insert {}: only while paused (now {})", path, state_label()));
+    return;
+  }
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    diag_.warn(0, fmt::format("insert {}: no such file", path));
+    return;
+  }
+  std::string text;
+  try {
+    text = load_custom_gcode(path);
+  } catch (const std::exception& e) {
+    diag_.warn(0, fmt::format("insert {}: {}", path, e.what()));
+    return;
+  }
+  std::size_t sent = 0;
+  recent_count_ = 0;
+  for (const std::string& l : split_lines(text)) {
+    Line line = Line::parse(l);
+    if (line.kind == CommandKind::None || line.kind == CommandKind::Host || line.is_m(110)) continue;
+    std::string_view command = command_for_sending(line, scratch_);
+    if (command.empty()) continue;
+    std::string copy(command);
+    sender_.submit(copy, 0, layer_);
+    track(copy, paused_);
+    ++sent;
+  }
+  user_commands_ += sent;
+  diag_.info(fmt::format("insert {}: {} commands sent; resume returns to the print", path, sent));
+}
+
+void PrintControl::set_speed(double factor) {
+  speed_ = factor;
+  user_speed_.change_factor(factor);
+  user_speed_.set_enabled(factor != 1);
+  diag_.info(fmt::format("speed: following moves at {:g} times the file's", factor));
+}
+
+void PrintControl::command(const ControlCommand& c) {
+  switch (c.verb) {
+    case ControlVerb::Pause: request_pause("pause", false); break;
+    case ControlVerb::PauseNow: request_pause("pause now", true); break;
+    case ControlVerb::Resume: resume(); break;
+    case ControlVerb::Speed: set_speed(c.number); break;
+    case ControlVerb::Gcode: user_gcode(c.argument); break;
+    case ControlVerb::Cancel: cancel(); break;
+    case ControlVerb::Status:
+      if (on_status) on_status();
+      break;
+    case ControlVerb::Insert: insert_file(c.argument); break;
+    case ControlVerb::Swap:
+      diag_.warn(0, fmt::format("{} {}: not supported yet (see gc-relayer and gc-swap-layer)",
+                                control_verb_name(c.verb), c.argument));
+      break;
+    case ControlVerb::Unknown: diag_.warn(0, fmt::format("control: {}", c.argument)); break;
+  }
+}
+
+void PrintControl::action(std::string_view text) {
+  auto starts = [&](std::string_view word) { return text.rfind(word, 0) == 0; };
+  if (starts("pause") && !starts("paused")) {
+    request_pause("//action:pause", false);
+  } else if (starts("resume") && !starts("resumed")) {
+    resume();
+  } else if (starts("cancel")) {
+    cancel();
+  } else {
+    diag_.info(fmt::format("printer action: {}", text));
+  }
+}
+
+void PrintControl::update(double now) {
+  if (pauses_.empty()) return;
+  PauseRecord& r = pauses_.back();
+  if (state_ == PrintState::Paused && r.wall_paused < 0 && sender_.idle()) {
+    r.wall_paused = now;
+    diag_.info(fmt::format("paused (layer {}, {:.2f} s after the request); waiting for resume", r.layer,
+                           now - r.wall_request));
+    if (on_status) on_status();
+  }
+  if (r.latency_s < 0 && r.block && r.path_at_request >= 0 && probe_.watched) {
+    double end = 0, queued = 0;
+    if (probe_.watched(end, queued)) {
+      r.latency_s = std::max(0.0, end - r.printer_request);
+      r.latency_mm = std::max(0.0, queued - r.path_at_request);
+    }
+  }
+}
+
+}  // namespace gcode::serial

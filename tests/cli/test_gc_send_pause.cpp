@@ -1,0 +1,464 @@
+// gc-send's pause, resume and cancel from the control FIFO, on the in-process
+// virtual printer and its executed-command log, with real fixtures cut into
+// 0.2 mm pieces by gc-subdivide:
+//  * `pause` at several moments: the pause block comes right after the last
+//    command of the layer the request came in, before any command of the
+//    next; the moves between the request and the layer's end ran at rush
+//    speed (capped); after `resume` the position, E, modes and F are those
+//    before the block; the rest is executed exactly (nothing lost, nothing
+//    twice);
+//  * `pause now`: the nozzle's path from the request to the end of motion,
+//    measured from the log (16-block planner, 4-slot queue, 250000 baud), at
+//    most 3.2 mm, and what gc-send reports agrees;
+//  * @pause, ;@pause and --pause-on M0 hold the host and are not sent;
+//  * the FIFO is refused when it is a regular file or writable by others;
+//  * cancel ends safely with exit status 0.
+#include <catch2/catch.hpp>
+
+#include <sys/stat.h>
+
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "gcode/core/line.hpp"
+#include "gcode/core/line_reader.hpp"
+#include "gcode/pipeline/pipeline.hpp"
+#include "serial_check.hpp"
+#include "test_support.hpp"
+
+using gctest::quote;
+using gctest::tool_path;
+
+namespace {
+
+// The start code and first three layers of a fixture in 0.2 mm pieces,
+// written once per run.
+const std::string& pieces_file() {
+  static std::string path;
+  if (path.empty()) {
+    path = gctest::temp_dir() + "/pieces.gcode";
+    auto r = gctest::run(quote(tool_path("gc-subdivide")) + " --max 0.2 " +
+                         quote(gctest::fixture_path("prusa_cube_0.2_mk3s_rel_zhop.gcode")) +
+                         " | awk '/^;LAYER_CHANGE/ { if (++n == 4) exit } { print }' > " + quote(path));
+    REQUIRE(r.status == 0);
+  }
+  return path;
+}
+
+struct Executed {
+  double time;
+  long long number;
+  std::string command;
+};
+
+std::vector<Executed> read_log(const std::string& path) {
+  std::vector<Executed> out;
+  std::string text = gctest::read_file(path);
+  gcode::MemoryLineSplitter split(text);
+  gcode::RawLine raw;
+  while (split.next(raw)) {
+    std::string_view s = raw.text;
+    std::size_t a = s.find('\t'), b = s.find('\t', a + 1);
+    long long n = std::stoll(std::string(s.substr(a + 1, b - a - 1)));
+    std::size_t c = b;
+    for (int i = 0; i < 4; ++i) c = s.find('\t', c + 1);
+    if (n < 0) continue;
+    out.push_back({std::stod(std::string(s.substr(0, a))), n, std::string(s.substr(c + 1))});
+  }
+  return out;
+}
+
+// The layer of every input line, as the library's pipeline sees it (the
+// end code: -1).
+std::map<std::uint64_t, int> layers_of(const std::string& text) {
+  struct Collect : gcode::Stage {
+    std::map<std::uint64_t, int> layer;
+    void line(const gcode::TrackedLine& t, gcode::Emitter& out) override {
+      layer[t.raw.number] = t.region == gcode::Region::EndCode ? -1 : t.layer;
+      out.pass(t);
+    }
+  } collect;
+  gcode::LayerMarkers markers;
+  gcode::Pipeline p(markers);
+  p.add(collect);
+  p.run_text(text);
+  return collect.layer;
+}
+
+std::string without_f(std::string_view command) {
+  gcode::Line line = gcode::Line::parse(command);
+  std::string out;
+  std::size_t start = 0;
+  std::string_view code = line.code();
+  // Words are separated by blanks; drop the F word.
+  while (start < code.size()) {
+    std::size_t end = code.find(' ', start);
+    std::string_view word = code.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start);
+    if (!word.empty() && word[0] != 'F' && word[0] != 'f') {
+      if (!out.empty()) out += ' ';
+      out += word;
+    }
+    if (end == std::string_view::npos) break;
+    start = end + 1;
+  }
+  return out;
+}
+
+// A number after `key` in gc-send's messages ("... after input line 123").
+double number_after(const std::string& text, const std::string& key) {
+  std::size_t p = text.find(key);
+  if (p == std::string::npos) return -1;
+  return std::stod(text.substr(p + key.size(), 24));
+}
+
+struct PauseRun {
+  gctest::RunResult result;
+  std::vector<Executed> log;
+};
+
+// gc-send on the in-process printer with a control FIFO; `script` runs once
+// the FIFO is there, with $F the FIFO and $S the status file.
+PauseRun send_with_control(const std::string& file, const std::string& printer, const std::string& args,
+                           const std::string& script) {
+  std::string dir = gctest::temp_dir();
+  std::string fifo = dir + "/control.fifo", status = dir + "/status.json", log = dir + "/executed.log";
+  std::string cmd = "F=" + quote(fifo) + "; S=" + quote(status) + "\n" + quote(tool_path("gc-send")) +
+                    " -v --port virtual:" + printer + ",log=" + log + " --control \"$F\" --status-file \"$S\" --bed 250x210 " + args +
+                    " " + quote(file) +
+                    " & p=$!\n"
+                    "for i in $(seq 500); do [ -p \"$F\" ] && break; sleep 0.01; done\n"
+                    "paused() { for i in $(seq 1000); do grep -q '\"state\": \"paused\"' \"$S\" 2>/dev/null && return; "
+                    "sleep 0.01; done; }\n"
+                    "at_layer() { for i in $(seq 1000); do grep -q \"\\\"layer\\\": $1,\" \"$S\" 2>/dev/null && return; "
+                    "sleep 0.01; done; }\n" +
+                    script + "\nwait $p";
+  PauseRun r;
+  r.result = gctest::run(cmd);
+  r.log = read_log(log);
+  return r;
+}
+
+struct Checked {
+  std::size_t prefix = 0;  // input commands before the block
+  std::size_t block = 0;   // lines of the pause and resume blocks
+};
+
+// The executed commands are the input's with the blocks at one place:
+// input commands [0, prefix) (F words may differ: the rush), the blocks,
+// then input commands [prefix, end) (the first move may carry its F back),
+// then M400. Returns where.
+// `speed_after`: a speed change follows the resume (F words may differ).
+Checked check_one_pause(const std::vector<Executed>& log, const std::vector<gctest::SentCommand>& input,
+                        std::uint64_t last_input_line, bool speed_after = false) {
+  Checked c;
+  while (c.prefix < input.size() && input[c.prefix].source_line <= last_input_line) ++c.prefix;
+  REQUIRE(log.size() > input.size());
+  c.block = log.size() - 1 - input.size();
+  for (std::size_t i = 0; i < c.prefix; ++i) {
+    INFO("before the block, command " << i);
+    REQUIRE(without_f(log[i].command) == without_f(input[i].text));
+  }
+  for (std::size_t i = c.prefix; i < input.size(); ++i) {
+    INFO("after the block, command " << i);
+    const std::string& got = log[i + c.block].command;
+    if (i < c.prefix + 3 || speed_after) {
+      REQUIRE(without_f(got) == without_f(input[i].text));
+    } else {
+      REQUIRE(got == input[i].text);
+    }
+  }
+  CHECK(log.back().command == "M400");
+  for (std::size_t i = 0; i < log.size(); ++i) REQUIRE(log[i].number == static_cast<long long>(i + 1));
+  return c;
+}
+
+gcode::MachineState state_after(const std::vector<Executed>& log, std::size_t count) {
+  gcode::MachineState s;
+  for (std::size_t i = 0; i < count; ++i) s.apply(gcode::Line::parse(log[i].command));
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("gc-send pause: at the end of the request's layer, rushed, resumed exactly, nothing lost", "[gc-send][pause]") {
+  const std::string& file = pieces_file();
+  std::string text = gctest::read_file(file);
+  auto input = gctest::commands_of(text);
+  auto layer = layers_of(text);
+  // Instant moves: the run lasts as long as the link takes; the request
+  // lands at a different line each time, once layer 1 has begun.
+  for (const char* when : {"1; sleep 0", "1; sleep 0.3", "2; sleep 0.1"}) {
+    INFO("pause at layer " << when);
+        // (--no-pace: with moves that take no time, pacing by their real
+    // durations only slows the run down.)
+    PauseRun r = send_with_control(file, "time-scale=20,instant-moves,heat-rate=1000", "--no-pace --rush 3 --max-speed 200",
+                                   std::string("at_layer ") + when +
+                                       "; echo pause > \"$F\"; paused; echo resume > \"$F\"");
+    INFO(r.result.err);
+    REQUIRE(r.result.status == 0);
+    std::uint64_t last = static_cast<std::uint64_t>(number_after(r.result.err, "pause block sent after input line "));
+    double asked_layer = number_after(r.result.err, "pause: finishing layer ");
+    REQUIRE(asked_layer >= 1);
+    Checked c = check_one_pause(r.log, input, last);
+    // Right at the layer's end: the last command before the block is of the
+    // request's layer, the first after it of the next (the file ends after
+    // layer 3: a pause asked there comes before what the file has after its
+    // last extrusion, or at its end).
+    CHECK(layer[input[c.prefix - 1].source_line] == static_cast<int>(asked_layer));
+    if (c.prefix < input.size() && layer[input[c.prefix].source_line] == -1) {
+      CHECK(asked_layer == 3);
+    } else if (c.prefix < input.size()) {
+      CHECK(layer[input[c.prefix].source_line] == static_cast<int>(asked_layer) + 1);
+    } else {
+      CHECK(asked_layer == 3);
+    }
+    // The block has no move into the next layer: its heights are the
+    // layer's own or above it (lift), and it ends where it began.
+    gcode::MachineState before = state_after(r.log, c.prefix);
+    gcode::MachineState after = state_after(r.log, c.prefix + c.block);
+    for (std::size_t i = c.prefix; i < c.prefix + c.block; ++i) {
+      gcode::MachineState s = state_after(r.log, i + 1);
+      CHECK(s.at(gcode::kZ) >= before.at(gcode::kZ));
+    }
+    for (int a : {gcode::kX, gcode::kY, gcode::kZ, gcode::kE}) CHECK(after.at(a) == before.at(a));
+    CHECK(after.relative_xyz == before.relative_xyz);
+    CHECK(after.relative_e == before.relative_e);
+    CHECK(after.feedrate == before.feedrate);
+    // The rush: from the request on, every extruding move of the layer ran
+    // at three times its speed, at most 200 mm/s; the first few after the
+    // request were already handed to the sender.
+    std::uint64_t from = static_cast<std::uint64_t>(number_after(r.result.err, "times the speed (after input line "));
+    gcode::MachineState sent, original;
+    std::size_t rushed = 0, slow = 0;
+    for (std::size_t i = 0; i < c.prefix; ++i) {
+      gcode::Move got = sent.apply(gcode::Line::parse(r.log[i].command));
+      gcode::Move was = original.apply(gcode::Line::parse(input[i].text));
+      if (!was.extruding || was.xy_length <= 0) continue;
+      double want = std::min(3 * was.feedrate, 200.0 * 60);
+      if (input[i].source_line <= from) {
+        CHECK(got.feedrate == was.feedrate);
+      } else if (std::fabs(got.feedrate - want) < 1) {
+        ++rushed;
+      } else {
+        CHECK(got.feedrate == was.feedrate);
+        CHECK(rushed == 0);  // only before the rush took hold
+        ++slow;
+      }
+    }
+    CHECK(slow <= 8);
+    CHECK(rushed > 0);
+  }
+}
+
+TEST_CASE("gc-send pause now: the nozzle stops within 3.2 mm of the request with 0.2 mm pieces", "[gc-send][pause]") {
+  const std::string& file = pieces_file();
+  auto input = gctest::commands_of(gctest::read_file(file));
+  for (const char* delay : {"0.3", "0.9"}) {
+    INFO("pause now " << delay << " s into layer 1");
+    PauseRun r = send_with_control(file, "time-scale=5,heat-rate=1000", "",
+                                   std::string("at_layer 1; sleep ") + delay +
+                                       "; echo pause now > \"$F\"; paused; echo cancel > \"$F\"");
+    INFO(r.result.err);
+    REQUIRE(r.result.status == 0);
+    double asked = number_after(r.result.err, "pause now: asked at printer time ");
+    long long block = 0;
+    {
+      std::uint64_t last = static_cast<std::uint64_t>(number_after(r.result.err, "pause block sent after input line "));
+      std::size_t prefix = 0;
+      while (prefix < input.size() && input[prefix].source_line <= last) ++prefix;
+      block = static_cast<long long>(prefix) + 1;
+      for (std::size_t i = 0; i < prefix; ++i) REQUIRE(r.log[i].command == input[i].text);
+    }
+    // The printer's motion, block by block, as the model runs it: a move
+    // starts when it has left the queue and the one before has ended.
+    gcode::MachineState s;
+    double end = 0, path = 0;
+    for (const Executed& e : r.log) {
+      if (e.number >= block) break;
+      gcode::Move m = s.apply(gcode::Line::parse(e.command));
+      double length = m.length > 0 ? m.length : std::fabs(m.filament);
+      if (length <= 0 || (m.kind != gcode::MoveKind::Linear && m.kind != gcode::MoveKind::Arc)) continue;
+      double start = std::max(e.time, end);
+      end = start + length / ((m.feedrate > 0 ? m.feedrate : 1500) / 60);
+      if (end > asked && m.length > 0) path += m.length * std::min(1.0, (end - asked) / (end - start));
+    }
+    INFO("path after the request " << path << " mm, " << end - asked << " s");
+    CHECK(path <= 3.2);
+    CHECK(path > 0.2);  // the planner was busy: a real measurement
+    double reported = number_after(r.result.err, "motion went on ");
+    CHECK(std::fabs(reported - path) < 0.05);
+  }
+}
+
+TEST_CASE("gc-send: @pause, a comment @pause and --pause-on M0 hold the host and are not sent", "[gc-send][pause]") {
+  std::string dir = gctest::temp_dir();
+  std::string base = gctest::head_of("prusa_cube_0.2_mk3s_rel_zhop.gcode", 3000);
+  for (const char* marker : {"@pause", ";@pause", "M0 Change the colour"}) {
+    INFO(marker);
+    // In the middle of the first layer.
+    std::size_t at = 0;
+    for (int i = 0; i < 2500; ++i) at = base.find('\n', at) + 1;
+    std::string text = base.substr(0, at) + marker + "\n" + base.substr(at);
+    std::string file = dir + "/with_pause.gcode";
+    gctest::write_file(file, text);
+    std::string args = std::string(marker).rfind("M0", 0) == 0 ? "--pause-on M0,M1,M25,M601" : "";
+    PauseRun r = send_with_control(file, "time-scale=100,instant-moves,heat-rate=1000", args,
+                                   "paused; sleep 0.2; echo resume > \"$F\"");
+    INFO(r.result.err);
+    REQUIRE(r.result.status == 0);
+    CHECK(r.result.err.find("the file's pause at line 2501") != std::string::npos);
+    auto input = gctest::commands_of(text);
+    // commands_of leaves out host commands but not M0: take it out here.
+    std::vector<gctest::SentCommand> expected;
+    for (auto& c : input)
+      if (c.text.rfind("M0", 0) != 0) expected.push_back(c);
+    REQUIRE(r.log.size() == expected.size() + 1);
+    for (std::size_t i = 0; i < expected.size(); ++i) REQUIRE(r.log[i].command == expected[i].text);
+    // The printer stood still while the host held the lines.
+    double gap = 0;
+    for (std::size_t i = 1; i < r.log.size(); ++i) gap = std::max(gap, r.log[i].time - r.log[i - 1].time);
+    CHECK(gap > 0.15 * 100);
+  }
+}
+
+TEST_CASE("gc-send: the control FIFO is refused when it is a regular file or writable by others", "[gc-send][pause]") {
+  std::string dir = gctest::temp_dir();
+  std::string regular = dir + "/regular";
+  gctest::write_file(regular, "");
+  auto r = gctest::run(quote(tool_path("gc-send")) + " -q --control " + quote(regular) + " " +
+                       quote(gctest::fixture_path("prusa_cube_0.2_mk3s_rel_zhop.gcode")));
+  CHECK(r.status == 1);
+  CHECK(r.err.find("not a FIFO") != std::string::npos);
+  std::string open = dir + "/open.fifo";
+  REQUIRE(mkfifo(open.c_str(), 0600) == 0);
+  chmod(open.c_str(), 0666);
+  r = gctest::run(quote(tool_path("gc-send")) + " -q --control " + quote(open) + " " +
+                  quote(gctest::fixture_path("prusa_cube_0.2_mk3s_rel_zhop.gcode")));
+  CHECK(r.status == 1);
+  CHECK(r.err.find("can be written by others") != std::string::npos);
+}
+
+TEST_CASE("gc-send: cancel parks, turns heaters off and exits 0, and junk in the FIFO changes nothing", "[gc-send][pause]") {
+  const std::string& file = pieces_file();
+  PauseRun r = send_with_control(file, "time-scale=5,instant-moves,heat-rate=1000", "",
+                                 "head -c 200000 /dev/urandom > \"$F\"; echo > \"$F\"; echo status > \"$F\"; echo bogus > \"$F\"; "
+                                 "sleep 0.3; "
+                                 "echo cancel > \"$F\"");
+  INFO(r.result.err);
+  CHECK(r.result.status == 0);
+  CHECK(r.result.err.find("cancelled after input line") != std::string::npos);
+  CHECK(r.result.err.find("unknown command 'bogus'") != std::string::npos);
+  REQUIRE(r.log.size() > 6);
+  std::vector<std::string> tail;
+  for (std::size_t i = r.log.size() - 5; i < r.log.size(); ++i) tail.push_back(r.log[i].command);
+  CHECK(tail == std::vector<std::string>{"M104 S0", "M140 S0", "M107", "M84", "M400"});
+}
+
+TEST_CASE("gc-send: a first Ctrl-C is a cancel: safe end, exit 0", "[gc-send][pause]") {
+  const std::string& file = pieces_file();
+  std::string dir = gctest::temp_dir();
+  std::string log = dir + "/executed.log";
+  auto r = gctest::run(quote(tool_path("gc-send")) + " --no-control --bed 250x210 --port virtual:time-scale=20,heat-rate=1000,log=" +
+                       log + " " + quote(file) + " & p=$!; sleep 1.5; kill -INT $p; wait $p");
+  INFO(r.err);
+  CHECK(r.status == 0);
+  CHECK(r.err.find("interrupted: cancelling") != std::string::npos);
+  auto executed = gctest::parse_executed_log(gctest::read_file(log));
+  REQUIRE(executed.commands.size() > 5);
+  CHECK(executed.commands.back() == "M400");
+  CHECK(executed.commands[executed.commands.size() - 2] == "M84");
+}
+
+TEST_CASE("gc-send: commands typed while paused are put back before the resume, and speed F scales what follows",
+          "[gc-send][pause]") {
+  const std::string& file = pieces_file();
+  auto input = gctest::commands_of(gctest::read_file(file));
+  PauseRun r = send_with_control(
+      file, "time-scale=20,instant-moves,heat-rate=1000", "--no-pace",
+      "at_layer 1; echo pause now > \"$F\"; paused; printf 'gcode G91\\ngcode G1 X5 Y-7 Z3 F600\\ngcode M83\\n"
+      "gcode G1 E4 F300\\ngcode M104 S180\\n' > \"$F\"; sleep 0.2; echo resume > \"$F\"; sleep 0.1; "
+      "echo speed 2 > \"$F\"");
+  INFO(r.result.err);
+  REQUIRE(r.result.status == 0);
+  std::uint64_t last = static_cast<std::uint64_t>(number_after(r.result.err, "pause block sent after input line "));
+  Checked c = check_one_pause(r.log, input, last, true);
+  gcode::MachineState before = state_after(r.log, c.prefix);
+  gcode::MachineState after = state_after(r.log, c.prefix + c.block);
+  // The typed commands were executed while paused ...
+  std::size_t typed = 0;
+  for (std::size_t i = c.prefix; i < c.prefix + c.block; ++i)
+    typed += r.log[i].command == "G1 X5 Y-7 Z3 F600" || r.log[i].command == "G1 E4 F300" ? 1 : 0;
+  CHECK(typed == 2);
+  // ... and the print went on from exactly where it stopped.
+  for (int a : {gcode::kX, gcode::kY, gcode::kZ, gcode::kE}) CHECK(after.at(a) == before.at(a));
+  CHECK(after.relative_xyz == before.relative_xyz);
+  CHECK(after.relative_e == before.relative_e);
+  CHECK(after.feedrate == before.feedrate);
+  CHECK(after.hotend_target[0] == before.hotend_target[0]);
+  // speed 2: from some move on, every extruding move runs at twice its speed
+  // (retractions, wipes and Z moves keep theirs, as in gc-speedup): once 20 in a
+  // row were doubled, all the rest are.
+  gcode::MachineState sent = after, original;
+  for (std::size_t i = 0; i < c.prefix; ++i) original.apply(gcode::Line::parse(input[i].text));
+  std::size_t doubled = 0, run = 0, plain_after = 0;
+  for (std::size_t i = c.prefix; i < input.size(); ++i) {
+    gcode::Move got = sent.apply(gcode::Line::parse(r.log[i + c.block].command));
+    gcode::Move was = original.apply(gcode::Line::parse(input[i].text));
+    if (!was.extruding || was.z_changed || was.xy_length <= 0) continue;
+    bool twice = std::fabs(got.feedrate - 2 * was.feedrate) < 1;
+    if (run < 20) {
+      run = twice ? run + 1 : 0;
+    } else if (twice) {
+      ++doubled;
+    } else {
+      ++plain_after;
+    }
+  }
+  CHECK(doubled > 100);
+  CHECK(plain_after == 0);
+}
+
+TEST_CASE("gc-send: insert FILE while paused prints its moves, then the resume returns exactly", "[gc-send][pause]") {
+  const std::string& file = pieces_file();
+  auto input = gctest::commands_of(gctest::read_file(file));
+  std::string extra = gctest::temp_dir() + "/tab.gcode";
+  // A small square on the top surface, in absolute E from its own origin.
+  gctest::write_file(extra, "; a tab\nG90\nM82\nG92 E0\nG1 X100 Y100 F3000\nG1 X105 Y100 E0.2 F1200\nG1 X105 Y105 E0.4\n"
+                            "G1 X100 Y105 E0.6\n@pause\nG1 X100 Y100 E0.8\n");
+  PauseRun r = send_with_control(file, "time-scale=20,instant-moves,heat-rate=1000", "--no-pace",
+                                 "at_layer 2; echo pause > \"$F\"; paused; echo insert " + quote(extra) +
+                                     " > \"$F\"; echo insert /nonexistent > \"$F\"; sleep 0.2; echo resume > \"$F\"");
+  INFO(r.result.err);
+  REQUIRE(r.result.status == 0);
+  CHECK(r.result.err.find("insert /nonexistent: no such file") != std::string::npos);
+  std::uint64_t last = static_cast<std::uint64_t>(number_after(r.result.err, "pause block sent after input line "));
+  Checked c = check_one_pause(r.log, input, last);
+  std::size_t tab = 0;
+  for (std::size_t i = c.prefix; i < c.prefix + c.block; ++i)
+    tab += r.log[i].command.rfind("G1 X105", 0) == 0 || r.log[i].command == "G1 X100 Y100 E0.8" ? 1 : 0;
+  CHECK(tab == 3);
+  gcode::MachineState before = state_after(r.log, c.prefix);
+  gcode::MachineState after = state_after(r.log, c.prefix + c.block);
+  for (int a : {gcode::kX, gcode::kY, gcode::kZ, gcode::kE}) CHECK(after.at(a) == before.at(a));
+  CHECK(after.relative_e == before.relative_e);
+  CHECK(after.feedrate == before.feedrate);
+}
+
+TEST_CASE("gc-send: a pause asked in the start code comes right before layer 1", "[gc-send][pause]") {
+  const std::string& file = pieces_file();
+  std::string text = gctest::read_file(file);
+  auto input = gctest::commands_of(text);
+  auto layer = layers_of(text);
+  PauseRun r = send_with_control(file, "time-scale=20,instant-moves,heat-rate=1000", "--no-pace",
+                                 "echo pause > \"$F\"; paused; echo resume > \"$F\"");
+  INFO(r.result.err);
+  REQUIRE(r.result.status == 0);
+  CHECK(r.result.err.find("pause: pausing before layer 1") != std::string::npos);
+  std::uint64_t last = static_cast<std::uint64_t>(number_after(r.result.err, "pause block sent after input line "));
+  Checked c = check_one_pause(r.log, input, last);
+  REQUIRE(c.prefix < input.size());
+  CHECK(layer[input[c.prefix - 1].source_line] == 0);
+  CHECK(layer[input[c.prefix].source_line] == 1);
+}
