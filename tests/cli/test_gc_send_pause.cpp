@@ -25,11 +25,20 @@
 #include "gcode/core/line.hpp"
 #include "gcode/core/line_reader.hpp"
 #include "gcode/pipeline/pipeline.hpp"
+#include "control_run.hpp"
 #include "serial_check.hpp"
 #include "test_support.hpp"
 
+using gctest::Checked;
+using gctest::Executed;
+using gctest::PauseRun;
+using gctest::check_one_pause;
+using gctest::number_after;
 using gctest::quote;
+using gctest::send_with_control;
+using gctest::state_after;
 using gctest::tool_path;
+using gctest::without_f;
 
 namespace {
 
@@ -47,29 +56,6 @@ const std::string& pieces_file() {
   return path;
 }
 
-struct Executed {
-  double time;
-  long long number;
-  std::string command;
-};
-
-std::vector<Executed> read_log(const std::string& path) {
-  std::vector<Executed> out;
-  std::string text = gctest::read_file(path);
-  gcode::MemoryLineSplitter split(text);
-  gcode::RawLine raw;
-  while (split.next(raw)) {
-    std::string_view s = raw.text;
-    std::size_t a = s.find('\t'), b = s.find('\t', a + 1);
-    long long n = std::stoll(std::string(s.substr(a + 1, b - a - 1)));
-    std::size_t c = b;
-    for (int i = 0; i < 4; ++i) c = s.find('\t', c + 1);
-    if (n < 0) continue;
-    out.push_back({std::stod(std::string(s.substr(0, a))), n, std::string(s.substr(c + 1))});
-  }
-  return out;
-}
-
 // The layer of every input line, as the library's pipeline sees it (the
 // end code: -1).
 std::map<std::uint64_t, int> layers_of(const std::string& text) {
@@ -85,99 +71,6 @@ std::map<std::uint64_t, int> layers_of(const std::string& text) {
   p.add(collect);
   p.run_text(text);
   return collect.layer;
-}
-
-std::string without_f(std::string_view command) {
-  gcode::Line line = gcode::Line::parse(command);
-  std::string out;
-  std::size_t start = 0;
-  std::string_view code = line.code();
-  // Words are separated by blanks; drop the F word.
-  while (start < code.size()) {
-    std::size_t end = code.find(' ', start);
-    std::string_view word = code.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start);
-    if (!word.empty() && word[0] != 'F' && word[0] != 'f') {
-      if (!out.empty()) out += ' ';
-      out += word;
-    }
-    if (end == std::string_view::npos) break;
-    start = end + 1;
-  }
-  return out;
-}
-
-// A number after `key` in gc-send's messages ("... after input line 123").
-double number_after(const std::string& text, const std::string& key) {
-  std::size_t p = text.find(key);
-  if (p == std::string::npos) return -1;
-  return std::stod(text.substr(p + key.size(), 24));
-}
-
-struct PauseRun {
-  gctest::RunResult result;
-  std::vector<Executed> log;
-};
-
-// gc-send on the in-process printer with a control FIFO; `script` runs once
-// the FIFO is there, with $F the FIFO and $S the status file.
-PauseRun send_with_control(const std::string& file, const std::string& printer, const std::string& args,
-                           const std::string& script) {
-  std::string dir = gctest::temp_dir();
-  std::string fifo = dir + "/control.fifo", status = dir + "/status.json", log = dir + "/executed.log";
-  std::string cmd = "F=" + quote(fifo) + "; S=" + quote(status) + "\n" + quote(tool_path("gc-send")) +
-                    " -v --port virtual:" + printer + ",log=" + log + " --control \"$F\" --status-file \"$S\" --bed 250x210 " + args +
-                    " " + quote(file) +
-                    " & p=$!\n"
-                    "for i in $(seq 500); do [ -p \"$F\" ] && break; sleep 0.01; done\n"
-                    "paused() { for i in $(seq 1000); do grep -q '\"state\": \"paused\"' \"$S\" 2>/dev/null && return; "
-                    "sleep 0.01; done; }\n"
-                    "at_layer() { for i in $(seq 1000); do grep -q \"\\\"layer\\\": $1,\" \"$S\" 2>/dev/null && return; "
-                    "sleep 0.01; done; }\n" +
-                    script + "\nwait $p";
-  PauseRun r;
-  r.result = gctest::run(cmd);
-  r.log = read_log(log);
-  return r;
-}
-
-struct Checked {
-  std::size_t prefix = 0;  // input commands before the block
-  std::size_t block = 0;   // lines of the pause and resume blocks
-};
-
-// The executed commands are the input's with the blocks at one place:
-// input commands [0, prefix) (F words may differ: the rush), the blocks,
-// then input commands [prefix, end) (the first move may carry its F back),
-// then M400. Returns where.
-// `speed_after`: a speed change follows the resume (F words may differ).
-Checked check_one_pause(const std::vector<Executed>& log, const std::vector<gctest::SentCommand>& input,
-                        std::uint64_t last_input_line, bool speed_after = false) {
-  Checked c;
-  while (c.prefix < input.size() && input[c.prefix].source_line <= last_input_line) ++c.prefix;
-  REQUIRE(log.size() > input.size());
-  c.block = log.size() - 1 - input.size();
-  for (std::size_t i = 0; i < c.prefix; ++i) {
-    INFO("before the block, command " << i);
-    REQUIRE(without_f(log[i].command) == without_f(input[i].text));
-  }
-  for (std::size_t i = c.prefix; i < input.size(); ++i) {
-    INFO("after the block, command " << i);
-    const std::string& got = log[i + c.block].command;
-    if (i < c.prefix + 3 || speed_after) {
-      REQUIRE(without_f(got) == without_f(input[i].text));
-    } else {
-      REQUIRE(got == input[i].text);
-    }
-  }
-  CHECK(log.back().command == "M400");
-  for (std::size_t i = 0; i < log.size(); ++i) REQUIRE(log[i].number == static_cast<long long>(i + 1));
-  return c;
-}
-
-gcode::MachineState state_after(const std::vector<Executed>& log, std::size_t count) {
-  gcode::MachineState s;
-  for (std::size_t i = 0; i < count; ++i) s.apply(gcode::Line::parse(log[i].command));
-  return s;
 }
 
 }  // namespace

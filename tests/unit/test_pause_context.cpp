@@ -167,3 +167,24 @@ TEST_CASE("park rules: no purge above the print", "[pause_context]") {
   over.x = 60.001;
   CHECK(place_error(over, c, purge) == "no error");
 }
+
+TEST_CASE("pause context: the printed side of a seam, settings and E mode included", "[pause][context]") {
+  PauseContext c = observed(
+      "M140 S60\nM104 S215\nM83\nG28\nG1 Z0.3 F600\n"
+      ";LAYER:0\nG1 Z0.2\nG1 X40 Y50 E0\nG1 X60 Y50 E1\nM106 S128\n"
+      ";LAYER:1\nG1 Z0.4\nG1 X60 Y70 E1\nG1 E-0.8 F2400\nM104 S210\n");
+  gcode::MachineState at;
+  at.set(gcode::kX, gcode::Fixed::from_double(60));
+  gcode::StreamPoint p = c.stream_point(at);
+  CHECK(p.state.at(gcode::kX) == at.at(gcode::kX));
+  CHECK(p.retracted == Approx(0.8));
+  CHECK(p.top_z == Approx(0.4));
+  CHECK(p.e_mode_set);
+  CHECK(p.extent.max_y == Approx(70));
+  using Kind = gcode::CarriedSettings::Kind;
+  REQUIRE(p.settings.find(Kind::Hotend, 0) != nullptr);
+  CHECK(p.settings.find(Kind::Hotend, 0)->value == gcode::Fixed::from_double(210));  // the last one said
+  REQUIRE(p.settings.find(Kind::Bed, 0) != nullptr);
+  CHECK(p.settings.find(Kind::Fan, 0)->value == gcode::Fixed::from_double(128));
+  CHECK_FALSE(observed("G1 X1 Y1 E1\n").stream_point(at).e_mode_set);
+}

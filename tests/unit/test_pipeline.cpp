@@ -16,6 +16,7 @@
 #include "gcode/core/output_buffer.hpp"
 #include "gcode/pipeline/pipeline.hpp"
 #include "gcode/pipeline/writer.hpp"
+#include "fn_stage.hpp"
 #include "test_support.hpp"
 
 using gcode::Emitter;
@@ -230,4 +231,30 @@ TEST_CASE("pipeline: finishing early leaves a line the last read cut off unread"
   CHECK(marking.lines == 2);
   CHECK(marking.finished == 1);
   CHECK(p.finished());
+}
+
+TEST_CASE("pipeline: a stream that continues another starts from its state", "[pipeline]") {
+  gcode::MachineState s;
+  s.set(gcode::kX, gcode::Fixed::from_double(10));
+  s.set(gcode::kY, gcode::Fixed::from_double(20));
+  s.set(gcode::kE, gcode::Fixed::from_double(5));
+  s.relative_xyz = true;
+  s.relative_e = true;
+  gcode::LayerMarkers markers;
+  Pipeline p(markers);
+  std::vector<double> xs, es;
+  gctest::FnStage stage([&](const gcode::TrackedLine& t, gcode::Emitter& out) {
+    xs.push_back(t.state.at(gcode::kX).to_double());
+    es.push_back(t.move.filament);
+    out.pass(t);
+  });
+  p.add(stage);
+  p.start_from(s);
+  p.run_text("G1 X5 E0.5\nG90\nG1 X1\n");
+  // Relative moves from X 10; G90 makes both absolute (Marlin), as the state says.
+  REQUIRE(xs.size() == 3);
+  CHECK(xs[0] == Approx(15));
+  CHECK(es[0] == Approx(0.5));
+  CHECK(xs[2] == Approx(1));
+  CHECK(p.tracker().state().at(gcode::kY).to_double() == Approx(20));
 }

@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
       "  echo pause > $XDG_RUNTIME_DIR/gc-send/ttyACM0.fifo     (finish the layer rushed, then park)\n"
       "  echo resume > $XDG_RUNTIME_DIR/gc-send/ttyACM0.fifo    (return exactly and go on)\n"
       "Control commands: pause, pause now, resume, speed F, gcode LINE and insert FILE (while paused),\n"
-      "cancel, status.\n"
+      "swap FILE (go on with the part re-sliced, by gc-relayer's rules), cancel, status.\n"
       "Comments and blank lines are not sent; @pause, ;@pause and --pause-on codes pause the host. Every\n"
       "line is numbered and checksummed, resent on request, and the end waits for M400. Ctrl-C cancels\n"
       "(retract, lift, park, heaters off); Ctrl-C twice sends M112. The default port is the virtual printer:\n"

@@ -101,14 +101,14 @@ void PrintControl::line(const TrackedLine& t) {
       return;
     }
   }
-  process(command, t.raw.number, t.layer, t.state, host_pause);
+  process(command, t.raw.number, t.layer, t.state, host_pause, t.move.extruding);
 }
 
 void PrintControl::process(std::string_view command, std::uint64_t source, int layer, const MachineState& after,
-                           bool host_pause) {
+                           bool host_pause, bool extruding) {
   if (holding_) {
     if (state_ == PrintState::Cancelling) return;
-    held_.push_back(Held{std::string(command), source, layer, after, host_pause});
+    held_.push_back(Held{std::string(command), source, layer, after, host_pause, extruding});
     return;
   }
   if (host_pause) {
@@ -124,11 +124,16 @@ void PrintControl::process(std::string_view command, std::uint64_t source, int l
   sender_.submit(command, source, layer);
   last_ = after;
   last_source_ = source;
+  if (extruding) sent_extrusion_ = true;
 }
 
 void PrintControl::layer(const LayerInfo& info, const MachineState& before) {
+  // A swap asked for goes first, unless a pause does (the swap then comes
+  // at its resume).
+  if (swap_ && state_ == PrintState::Printing && !holding_ && swap_here(before, info.index - 1)) return;
   layer_ = info.index;
   region_ = Region::Layer;
+  sent_extrusion_ = false;
   if (state_ != PrintState::Pausing) return;
   rush_.set_enabled(false);
   pauses_.back().paused_before_layer = info.index;
@@ -136,6 +141,8 @@ void PrintControl::layer(const LayerInfo& info, const MachineState& before) {
 }
 
 void PrintControl::end_code(const MachineState& before) {
+  // The file is done but for its end code: the other file goes on on top.
+  if (swap_ && state_ == PrintState::Printing && !holding_ && swap_here(before, layer_)) return;
   region_ = Region::EndCode;
   if (state_ != PrintState::Pausing) return;
   rush_.set_enabled(false);
@@ -242,6 +249,8 @@ void PrintControl::pause_here(const MachineState& at) {
   r.block = true;
   if (probe_.watch) probe_.watch(r.block_number);
   submit_lines(block.pause, layer_);
+  pause_point_ = at;
+  paused_context_ = context_;
   expected_ = at;
   for (const std::string& l : block.pause) track(l, expected_);
   paused_ = expected_;
@@ -259,6 +268,8 @@ void PrintControl::hold_here(std::string request) {
   PauseRecord& r = pauses_.back();
   r.input_line = last_source_;
   r.block_number = sender_.last_submitted() + 1;
+  pause_point_ = last_;
+  paused_context_ = context_;
   expected_ = last_;
   paused_ = last_;
   resume_lines_.clear();
@@ -339,10 +350,15 @@ void PrintControl::resume() {
   if (pauses_.back().wall_paused < 0) pauses_.back().wall_paused = EventLoop::now();
   state_ = PrintState::Printing;
   holding_ = false;
+  if (swap_ && at_layer_start()) {
+    // Back where it paused, as if it never had: the other file joins there.
+    context_ = paused_context_;
+    if (swap_here(pause_point_, std::max(0, layer_ - 1))) return;
+  }
   diag_.info(fmt::format("resume: printing on from input line {}", last_source_ + 1));
   std::deque<Held> pending;
   pending.swap(held_);
-  for (const Held& h : pending) process(h.command, h.source, h.layer, h.after, h.host_pause);
+  for (const Held& h : pending) process(h.command, h.source, h.layer, h.after, h.host_pause, h.extruding);
 }
 
 void PrintControl::cancel() {
@@ -351,6 +367,8 @@ void PrintControl::cancel() {
   const MachineState& at = state_ == PrintState::Paused ? paused_ : last_;
   rush_.set_enabled(false);
   held_.clear();
+  if (swap_) diag_.info(fmt::format("cancel: swap {} called off", swap_->path()));
+  swap_.reset();
   // Nothing more of the file: what the sender holds unsent would otherwise
   // go out before the safe end (a file read far ahead, the start code).
   std::size_t dropped = sender_.discard_unsent();
@@ -451,6 +469,63 @@ void PrintControl::set_speed(double factor) {
   diag_.info(fmt::format("speed: following moves at {:g} times the file's", factor));
 }
 
+// Nothing of the current layer has gone out (its start, or the start code):
+// a swap can take its place.
+bool PrintControl::at_layer_start() const { return !sent_extrusion_; }
+
+// swap FILE: checked now (readable, layers above what is printed, the same
+// place on the bed), joined at the next layer's start or at the resume.
+void PrintControl::request_swap(const std::string& path) {
+  if (state_ == PrintState::Cancelling) return;
+  if (!on_swap) {
+    diag_.warn(0, fmt::format("swap {}: not possible here", path));
+    return;
+  }
+  std::unique_ptr<JoinStream> next;
+  try {
+    next = std::make_unique<JoinStream>(path);
+    const bool paused = state_ == PrintState::Paused;
+    next->plan((paused ? paused_context_ : context_).stream_point(paused ? pause_point_ : last_), precision_.of('Z'),
+               "the print", nullptr);
+  } catch (const std::exception& e) {
+    diag_.warn(0, fmt::format("swap {}: {}; the print goes on as it is", path, e.what()));
+    return;
+  }
+  if (swap_) diag_.info(fmt::format("swap {}: instead of {}", path, swap_->path()));
+  swap_ = std::move(next);
+  const bool paused = state_ == PrintState::Paused;
+  diag_.info(fmt::format("swap {}: {}", path,
+                         paused && at_layer_start() ? "joins where the print paused, at the resume"
+                         : paused                   ? "joins at the next layer's start after the resume"
+                                                    : "joins at the next layer's start"));
+}
+
+// The other file goes on from here: `at` is where the printer stands (the
+// current file's state after everything handed over), `layers_done` the
+// layers printed. False (the print goes on as it is) when it cannot join.
+bool PrintControl::swap_here(const MachineState& at, int layers_done) {
+  std::unique_ptr<JoinStream> next = std::move(swap_);
+  StreamPoint printed = context_.stream_point(at);
+  char zt[kMaxNumberChars];
+  std::string top(number_text(printed.top_z, 3, zt));
+  try {
+    next->plan(printed, precision_.of('Z'), fmt::format("the print's layer {} (Z {})", layers_done, top), &diag_);
+  } catch (const std::exception& e) {
+    diag_.warn(0, fmt::format("swap {}: {}; the print goes on as it is", next->path(), e.what()));
+    return false;
+  }
+  for (const std::string& r : next->report()) diag_.info(fmt::format("swap: {}", r));
+  diag_.info(fmt::format("swap {}: joined onto layer {} (Z {}) after input line {}", next->path(), layers_done, top,
+                         last_source_));
+  ++swaps_;
+  last_ = at;
+  held_.clear();
+  recent_count_ = 0;  // what went out last is no longer the input's
+  layer_ = layers_done;
+  on_swap(std::move(next), layers_done);
+  return true;
+}
+
 void PrintControl::command(const ControlCommand& c) {
   switch (c.verb) {
     case ControlVerb::Pause: request_pause("pause", false); break;
@@ -463,10 +538,7 @@ void PrintControl::command(const ControlCommand& c) {
       if (on_status) on_status();
       break;
     case ControlVerb::Insert: insert_file(c.argument); break;
-    case ControlVerb::Swap:
-      diag_.warn(0, fmt::format("{} {}: not supported yet (see gc-relayer and gc-swap-layer)",
-                                control_verb_name(c.verb), c.argument));
-      break;
+    case ControlVerb::Swap: request_swap(c.argument); break;
     case ControlVerb::Unknown: diag_.warn(0, fmt::format("control: {}", c.argument)); break;
   }
 }

@@ -50,6 +50,7 @@ void print_summary(const Sender& sender, const VirtualPrinter* printer, const Pr
   std::string input;
   if (s.shortened > 0) input += fmt::format(", shortened {}", s.shortened);
   if (s.skipped > 0) input += fmt::format(", left out {}", s.skipped);
+  if (control.swaps() > 0) input += fmt::format(", swaps {}", control.swaps());
   fmt::print(stderr,
              "gc-send: summary: lines {}, time {:.3f} s, {:.0f} lines/s, {}, flow {}, resends {}, errors {}, "
              "overdue answers {}, timeouts {}{}\n",

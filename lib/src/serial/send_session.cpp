@@ -25,6 +25,42 @@ constexpr std::size_t kLowWater = 16384;   // read more when less is buffered
 
 }  // namespace
 
+// A swapped-in file: its text, and the pipeline that reads it as the
+// printer's stream goes on.
+struct SendSession::Segment : Stage {
+  Segment(SendSession& session, std::unique_ptr<JoinStream> next, int layers_done, std::uint64_t lines_before)
+      : session(session),
+        source(std::move(next)),
+        pipeline(source->markers(), PipelineOptions{.layers = true, .block_size = 16384}),
+        layer_offset(layers_done),
+        line_offset(lines_before) {
+    pipeline.start_from(source->printed().state);
+  }
+  void line(const TrackedLine& t, Emitter&) override {
+    if (session.current_ == this) session.deliver(t, layer_offset, line_offset);
+  }
+  void layer(const LayerInfo& info, const MachineState& before, Emitter&) override {
+    if (session.current_ != this) return;
+    LayerInfo i = info;
+    i.index += layer_offset;
+    i.first_line += line_offset;
+    session.control_->layer(i, before);
+  }
+  void end_code(const EndCodeInfo&, const MachineState& before, Emitter&) override {
+    if (session.current_ == this) session.control_->end_code(before);
+  }
+  bool reads_state() const override { return true; }
+
+  SendSession& session;
+  std::unique_ptr<JoinStream> source;
+  Pipeline pipeline;
+  int layer_offset;
+  std::uint64_t line_offset;
+  std::string text;       // pumped from the source, not fed yet
+  std::size_t pos = 0;
+  bool source_done = false;
+};
+
 SendSession::SendSession(EventLoop& loop, Sender& sender, int input_fd, int port_fd, Diagnostics& diagnostics)
     : loop_(loop),
       sender_(sender),
@@ -71,6 +107,9 @@ void SendSession::set_control(const PrintControlConfig& config, const std::strin
   control_->on_status = [this] {
     if (progress_) progress_->print_line(snapshot());
   };
+  control_->on_swap = [this](std::unique_ptr<JoinStream> next, int layers_done) {
+    start_swap(std::move(next), layers_done);
+  };
   if (control_path.empty()) return;
   fifo_ = std::make_unique<ControlFifo>(control_path);
   parser_ = std::make_unique<ControlParser>([this](const ControlCommand& c) { control_->command(c); },
@@ -96,14 +135,71 @@ void SendSession::run() {
   if (progress_) report(true);
 }
 
+// The input's pipeline: nothing of it goes on once a swap left it.
 void SendSession::line(const TrackedLine& t, Emitter&) {
-  ++input_lines_;
-  control_->line(t);
+  if (current_ == nullptr) deliver(t, 0, 0);
 }
 
-void SendSession::layer(const LayerInfo& info, const MachineState& before, Emitter&) { control_->layer(info, before); }
+void SendSession::layer(const LayerInfo& info, const MachineState& before, Emitter&) {
+  if (current_ == nullptr) control_->layer(info, before);
+}
 
-void SendSession::end_code(const EndCodeInfo&, const MachineState& before, Emitter&) { control_->end_code(before); }
+void SendSession::end_code(const EndCodeInfo&, const MachineState& before, Emitter&) {
+  if (current_ == nullptr) control_->end_code(before);
+}
+
+// A swapped-in file's lines count on from what was printed before it.
+void SendSession::deliver(const TrackedLine& t, int layer_offset, std::uint64_t line_offset) {
+  ++input_lines_;
+  if (layer_offset == 0 && line_offset == 0) {
+    control_->line(t);
+    return;
+  }
+  RawLine raw = t.raw;
+  raw.number += line_offset;
+  TrackedLine shifted{raw, t.line, t.move, t.before, t.state, t.region, t.layer > 0 ? t.layer + layer_offset : 0,
+                      t.feature, t.origin};
+  control_->line(shifted);
+}
+
+int SendSession::layers() const {
+  if (current_ != nullptr) return current_->layer_offset + current_->pipeline.tracker().layer_count();
+  return pipeline_.tracker().layer_count();
+}
+
+void SendSession::start_swap(std::unique_ptr<JoinStream> next, int layers_done) {
+  segments_.push_back(std::make_unique<Segment>(*this, std::move(next), layers_done, input_lines_));
+  current_ = segments_.back().get();
+  control_->add_stages(current_->pipeline);
+  current_->pipeline.add(*current_);
+  // The layers to come are the other file's: as far as known.
+  total_layers_ = 0;
+  // The input is read no further.
+  if (input_watch_ >= 0) loop_.set_events(input_watch_, 0);
+}
+
+// One line of the swapped-in file; false when none is ready.
+bool SendSession::feed_segment() {
+  Segment& s = *current_;
+  if (s.pos == s.text.size()) {
+    s.text.clear();
+    s.pos = 0;
+    if (!s.source_done && !s.source->pump(s.text, control_->seam_options(), pipeline_.precision(), &diag_))
+      s.source_done = true;
+    if (s.text.empty()) {
+      s.pipeline.finish();
+      input_done_ = true;
+      control_->end_of_input();
+      return false;
+    }
+  }
+  std::size_t nl = s.text.find('\n', s.pos);
+  std::size_t end = nl == std::string::npos ? s.text.size() : nl + 1;
+  s.pipeline.feed(std::string_view(s.text).substr(s.pos, end - s.pos));
+  s.pos = end;
+  sender_.pump(EventLoop::now());
+  return true;
+}
 
 void SendSession::read_input() {
   if (in_pos_ > 0 && in_pos_ == in_buf_.size()) {
@@ -132,6 +228,10 @@ void SendSession::read_input() {
 // One line at a time, while the sender and the control take more.
 void SendSession::feed_input() {
   while (!input_done_ && control_->accepts_input() && sender_.wants_input()) {
+    if (current_ != nullptr) {
+      if (!feed_segment()) break;
+      continue;
+    }
     if (in_pos_ == in_buf_.size() && !input_eof_) break;
     std::size_t nl = in_buf_.find('\n', in_pos_);
     if (nl == std::string::npos) {
@@ -215,8 +315,13 @@ ProgressSnapshot SendSession::snapshot() const {
   const SenderStats& st = sender_.stats();
   s.state = sender_.finished() ? std::string_view("done") : control_->state_label();
   s.layer = control_->layer();
-  s.layers = std::max(total_layers_, pipeline_.tracker().layer_count());
-  if (input_size_ > 0) s.percent = 100.0 * static_cast<double>(input_bytes_) / static_cast<double>(input_size_);
+  s.layers = std::max(total_layers_, layers());
+  if (current_ != nullptr) {
+    const JoinStream& j = *current_->source;
+    if (j.bytes() > 0) s.percent = 100.0 * static_cast<double>(j.bytes_out()) / static_cast<double>(j.bytes());
+  } else if (input_size_ > 0) {
+    s.percent = 100.0 * static_cast<double>(input_bytes_) / static_cast<double>(input_size_);
+  }
   s.lines = st.lines;
   s.elapsed = st.print_start >= 0 ? EventLoop::now() - st.print_start : 0;
   s.lines_per_second = s.elapsed > 0 ? static_cast<double>(st.lines) / s.elapsed : 0;
@@ -255,7 +360,7 @@ void SendSession::update() {
   }
   if (port_watch_ >= 0)
     loop_.set_events(port_watch_, static_cast<short>(POLLIN | (sender_.output().empty() ? 0 : POLLOUT)));
-  bool want = !input_eof_ && in_buf_.size() - in_pos_ < kLowWater;
+  bool want = current_ == nullptr && !input_eof_ && in_buf_.size() - in_pos_ < kLowWater;
   if (input_watch_ >= 0) loop_.set_events(input_watch_, want ? POLLIN : 0);
 }
 

@@ -125,59 +125,75 @@ LayerAction RelayerPlan::at_end_code(const SpliceContext& context) {
   return join(context);
 }
 
-LayerAction RelayerPlan::join(const SpliceContext& context) {
-  joined_ = true;
-  const double printed = last_.z + context.shift.to_double();
-  Join j = choose_join(next_, printed, options_.z_decimals);
-  const int first_new = !j.covered.empty() ? j.covered.front() : j.first;
-  // The new file's part below the join must lie where the old one printed.
-  std::string error = placement_difference(context.extent, next_.extent(1, first_new - 1), next_.name());
-  if (!error.empty()) throw std::runtime_error(error);
-  LayerAction a;
-  a.leave = true;
-  a.shift = context.shift;
-  const std::string& np = options_.note_prefix;
-  report_.push_back(fmt::format("the input's layers 1-{} (to Z {}) are kept", last_.index, mm(last_.z)));
-  if (!j.covered.empty())
-    report_.push_back(fmt::format("{} layer{} {} left out: already covered", next_.name(),
-                                  j.covered.size() > 1 ? "s" : "", list_layers(j.covered)));
-  for (const JoinStep& s : j.fills) {
-    SpliceBlock b = layer_index_block(next_, s.layer, s.layer);
-    b.z_shift = s.z_shift;
-    b.extrusion_scale = s.scale;
-    const double at = next_.layer(s.layer).info.z + s.z_shift.to_double();
-    b.note = fmt::format("{}layer {} of {} at Z {}, extrusion x{}: the height missing under its layer {}", np,
-                         s.layer, next_.name(), mm(at), mm(s.scale), s.layer);
-    report_.push_back(fmt::format("{} layer {} printed first at Z {} with its extrusion x{} (the missing {} mm)",
-                                  next_.name(), s.layer, mm(at), mm(s.scale), mm(s.scale * height_of(next_, s.layer))));
-    a.blocks.push_back(std::move(b));
-  }
-  SpliceBlock rest = layer_index_block(next_, j.first, j.first, true);
-  rest.extrusion_scale = j.first_scale;
-  const LayerInfo& f = next_.layer(j.first).info;
-  rest.note = fmt::format("{}{} from its layer {} (Z {}) on, joined onto the input's layer {} (Z {})", np,
-                          next_.name(), j.first, mm(f.z), last_.index, mm(last_.z));
-  report_.push_back(fmt::format("{} goes on from its layer {} (Z {}) to its end", next_.name(), j.first, mm(f.z)));
-  if (j.first_scale != 1)
-    report_.push_back(fmt::format("{} layer {} overlaps the print: its extrusion x{}", next_.name(), j.first,
-                                  mm(j.first_scale)));
-  warn_if_uneven(j);
-  a.blocks.push_back(std::move(rest));
-  return a;
-}
+namespace {
 
 // A join that has to squeeze or stretch a layer by half or more shows on the
 // part: the user should know before the printer does it.
-void RelayerPlan::warn_if_uneven(const Join& j) const {
-  if (diag_ == nullptr) return;
+void warn_if_uneven(const LayerIndex& next, const Join& j, Diagnostics* diag) {
+  if (diag == nullptr) return;
   auto uneven = [](double scale) { return scale < 0.5 || scale > 1.5; };
   if (uneven(j.first_scale))
-    diag_->warn(fmt::format("{} layer {} is printed with its extrusion x{} at the join: the seam may show",
-                            next_.name(), j.first, mm(j.first_scale)));
+    diag->warn(fmt::format("{} layer {} is printed with its extrusion x{} at the join: the seam may show",
+                           next.name(), j.first, mm(j.first_scale)));
   for (const JoinStep& s : j.fills)
     if (uneven(s.scale))
-      diag_->warn(fmt::format("{} layer {} fills the gap with its extrusion x{}: the seam may show", next_.name(),
-                              s.layer, mm(s.scale)));
+      diag->warn(fmt::format("{} layer {} fills the gap with its extrusion x{}: the seam may show", next.name(),
+                             s.layer, mm(s.scale)));
+}
+
+}  // namespace
+
+JoinBlocks join_blocks(LayerIndex& next, double printed_z, int z_decimals, const Box2& printed_extent,
+                       const std::string& onto, const std::string& note_prefix, Diagnostics* diag) {
+  JoinBlocks out;
+  Join& j = out.join;
+  j = choose_join(next, printed_z, z_decimals);
+  const int first_new = !j.covered.empty() ? j.covered.front() : j.first;
+  // The new file's part below the join must lie where the old one printed.
+  std::string error = placement_difference(printed_extent, next.extent(1, first_new - 1), next.name());
+  if (!error.empty()) throw std::runtime_error(error);
+  if (!j.covered.empty())
+    out.report.push_back(fmt::format("{} layer{} {} left out: already covered", next.name(),
+                                     j.covered.size() > 1 ? "s" : "", list_layers(j.covered)));
+  for (const JoinStep& s : j.fills) {
+    SpliceBlock b = layer_index_block(next, s.layer, s.layer);
+    b.z_shift = s.z_shift;
+    b.extrusion_scale = s.scale;
+    const double at = next.layer(s.layer).info.z + s.z_shift.to_double();
+    b.note = fmt::format("{}layer {} of {} at Z {}, extrusion x{}: the height missing under its layer {}",
+                         note_prefix, s.layer, next.name(), mm(at), mm(s.scale), s.layer);
+    out.report.push_back(fmt::format("{} layer {} printed first at Z {} with its extrusion x{} (the missing {} mm)",
+                                     next.name(), s.layer, mm(at), mm(s.scale),
+                                     mm(s.scale * height_of(next, s.layer))));
+    out.blocks.push_back(std::move(b));
+  }
+  SpliceBlock rest = layer_index_block(next, j.first, j.first, true);
+  rest.extrusion_scale = j.first_scale;
+  const LayerInfo& f = next.layer(j.first).info;
+  rest.note = fmt::format("{}{} from its layer {} (Z {}) on, joined onto {}", note_prefix, next.name(), j.first,
+                          mm(f.z), onto);
+  out.report.push_back(fmt::format("{} goes on from its layer {} (Z {}) to its end", next.name(), j.first, mm(f.z)));
+  if (j.first_scale != 1)
+    out.report.push_back(fmt::format("{} layer {} overlaps the print: its extrusion x{}", next.name(), j.first,
+                                     mm(j.first_scale)));
+  warn_if_uneven(next, j, diag);
+  out.blocks.push_back(std::move(rest));
+  return out;
+}
+
+LayerAction RelayerPlan::join(const SpliceContext& context) {
+  joined_ = true;
+  const double printed = last_.z + context.shift.to_double();
+  JoinBlocks j = join_blocks(next_, printed, options_.z_decimals, context.extent,
+                             fmt::format("the input's layer {} (Z {})", last_.index, mm(last_.z)),
+                             options_.note_prefix, diag_);
+  report_.push_back(fmt::format("the input's layers 1-{} (to Z {}) are kept", last_.index, mm(last_.z)));
+  report_.insert(report_.end(), j.report.begin(), j.report.end());
+  LayerAction a;
+  a.leave = true;
+  a.shift = context.shift;
+  a.blocks = std::move(j.blocks);
+  return a;
 }
 
 // ---------------------------------------------------------------------------

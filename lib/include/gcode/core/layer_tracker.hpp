@@ -104,6 +104,13 @@ class LayerTracker {
     state_.relative_e = relative;
     state_.e_follows_g90 = false;
   }
+  // A stream that continues another one (gc-send's live swap): the machine
+  // stands in `state` before the first line. Before the first line.
+  void start_from(const MachineState& state) {
+    state_ = state;
+    previous_ = state;
+    before_tail_ = state;
+  }
   // Records the decimals the input uses per letter (see Precision).
   void set_precision(Precision* precision) { precision_ = precision; }
 

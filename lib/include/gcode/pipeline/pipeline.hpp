@@ -42,6 +42,9 @@ class Pipeline : private LayerSink {
 
   // The E mode of a file that never sets it (see e_mode.hpp); before the first line.
   void set_e_mode(bool relative) { tracker_.set_e_mode(relative); }
+  // The input continues a stream that left the machine in `state` (its
+  // position, modes, E coordinate, F): before the first line.
+  void start_from(const MachineState& state) { tracker_.start_from(state); }
   // Buffers at least `bytes` of input from `fd` (less at its end) without
   // consuming it, and returns what is buffered; run() starts with it.
   std::string_view read_ahead(int fd, std::size_t bytes);

@@ -17,6 +17,13 @@
 //            exact Z, unretract, E coordinate, modes, F); first, whatever the
 //            commands typed while paused changed (position, modes, E,
 //            temperature) is put back the way the block expects it.
+// swap FILE  FILE (re-sliced with other settings) continues the print by
+//            gc-relayer's rules (join_stream.hpp) from its first layer above
+//            what is printed: at the next layer's start, or when paused at a
+//            layer's start (nothing of it printed yet), at the resume, after
+//            the resume block has taken the head back to where it paused. The
+//            rest of the current file is left out; the session feeds FILE's
+//            text from there (on_swap).
 // In-stream pauses (@pause, ;@pause, --pause-on M0,...) are the file's own:
 // whatever the file does around them (gc-pause-at writes its park and
 // return there) is sent as it is; the host only holds the lines after it.
@@ -27,6 +34,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -36,7 +44,9 @@
 #include "gcode/pipeline/pipeline.hpp"
 #include "gcode/serial/control_fifo.hpp"
 #include "gcode/serial/sender.hpp"
+#include "gcode/transform/join_stream.hpp"
 #include "gcode/transform/pause_context.hpp"
+#include "gcode/transform/seam.hpp"
 #include "gcode/transform/speed.hpp"
 
 namespace gcode::serial {
@@ -50,6 +60,7 @@ struct PrintControlConfig {
   double filament_diameter = 1.75;
   std::vector<int> pause_on;    // M numbers handled as host pauses, not sent
   std::string cancel_gcode = "M104 S0\nM140 S0\nM107\nM84";  // after the park of a cancel
+  SeamOptions seam;             // the way onto a swapped-in file
 };
 
 enum class PrintState : std::uint8_t { Printing, Pausing, Paused, Cancelling };
@@ -121,6 +132,12 @@ class PrintControl {
   double speed() const { return speed_; }
   // Called for `status` and when a pause is reached.
   std::function<void()> on_status;
+  // A swap starts: from now on the session feeds `next`'s text (it stands
+  // where the printer stands now) instead of the current input; `layers_done`
+  // layers are printed. Without it, swap is refused.
+  std::function<void(std::unique_ptr<JoinStream> next, int layers_done)> on_swap;
+  const SeamOptions& seam_options() const { return config_.seam; }
+  std::uint64_t swaps() const { return swaps_; }
 
  private:
   struct Held {
@@ -129,6 +146,7 @@ class PrintControl {
     int layer = 0;
     MachineState after;
     bool host_pause = false;
+    bool extruding = false;
   };
   // The last commands handed to the sender, for a pause now that takes
   // back those not sent yet.
@@ -139,7 +157,8 @@ class PrintControl {
     int layer = 0;
   };
   static constexpr std::size_t kRecent = 16;
-  void process(std::string_view command, std::uint64_t source, int layer, const MachineState& after, bool host_pause);
+  void process(std::string_view command, std::uint64_t source, int layer, const MachineState& after, bool host_pause,
+               bool extruding);
   void submit_lines(const std::vector<std::string>& lines, int layer);
   void track(std::string_view line, MachineState& state) const;
   void request_pause(std::string request, bool now);
@@ -150,6 +169,9 @@ class PrintControl {
   void user_gcode(const std::string& text);
   void insert_file(const std::string& path);
   void set_speed(double factor);
+  void request_swap(const std::string& path);
+  bool at_layer_start() const;
+  bool swap_here(const MachineState& at, int layers_done);
   void withdraw_unsent();
   std::vector<std::string> put_back(const MachineState& from, const MachineState& to) const;
   void report_status();
@@ -186,6 +208,11 @@ class PrintControl {
   std::uint64_t host_commands_ = 0;
   double speed_ = 1;
   std::uint64_t last_source_ = 0;
+  MachineState pause_point_;         // where the print stopped (before the block)
+  PauseContext paused_context_;      // the context there (held lines are observed after it)
+  bool sent_extrusion_ = false;      // an extruding move went out since the last layer's start
+  std::unique_ptr<JoinStream> swap_; // asked for, not started yet
+  std::uint64_t swaps_ = 0;
 };
 
 }  // namespace gcode::serial

@@ -10,12 +10,18 @@
 // sender wants more: what a stage switched on mid-stream changes (the rush
 // of a pause) is what follows the request, not what was read long before.
 // Ctrl-C once cancels (a safe end); Ctrl-C twice sends M112 at once.
+//
+// A swap (print_control.hpp) leaves the input for good: the other file's
+// text (join_stream.hpp) runs through a pipeline of its own, started where
+// the printer stands, with the same speed stages and the same control; its
+// layers count on from those printed.
 #include <signal.h>
 
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "gcode/core/diagnostics.hpp"
 #include "gcode/core/layer_marker.hpp"
@@ -51,7 +57,7 @@ class SendSession : private Stage {
   // Runs until the sender is finished.
   void run();
   std::uint64_t input_lines() const { return input_lines_; }
-  int layers() const { return pipeline_.tracker().layer_count(); }
+  int layers() const;
   bool emergency() const { return interrupts_ > 1; }
 
  private:
@@ -60,6 +66,10 @@ class SendSession : private Stage {
   void layer(const LayerInfo& info, const MachineState& before, Emitter& out) override;
   void end_code(const EndCodeInfo& info, const MachineState& before, Emitter& out) override;
   bool reads_state() const override { return true; }
+  struct Segment;
+  void deliver(const TrackedLine& t, int layer_offset, std::uint64_t line_offset);
+  void start_swap(std::unique_ptr<JoinStream> next, int layers_done);
+  bool feed_segment();
   void read_input();
   void feed_input();
   void read_port();
@@ -98,6 +108,9 @@ class SendSession : private Stage {
   std::string_view shown_state_;   // what the progress last showed
   int shown_layer_ = -1;
   int total_layers_ = 0;
+  // Swapped-in files, all kept: a swap starts inside a pipeline's call.
+  std::vector<std::unique_ptr<Segment>> segments_;
+  Segment* current_ = nullptr;  // what is fed now (null: the input)
 };
 
 }  // namespace gcode::serial

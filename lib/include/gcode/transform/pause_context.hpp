@@ -4,7 +4,9 @@
 // print so far, and where the head may wait.
 //
 //   PauseContext  observes every line: what the file itself has retracted,
-//                 the highest Z printed, the XY extent of what was printed.
+//                 the highest Z printed, the XY extent of what was printed,
+//                 and the settings a seam carries (gc-send's live swap joins
+//                 another file where the print stands).
 //   ParkRules     where to park: --park X,Y, else the back of the bed (bed
 //                 depth - 10 mm) centred on the print (background.md §1: the
 //                 top layer stays visible and reachable); a park position above
@@ -16,6 +18,7 @@
 #include "gcode/core/print_area.hpp"
 #include "gcode/pipeline/stage.hpp"
 #include "gcode/transform/pause_sequence.hpp"
+#include "gcode/transform/seam.hpp"
 
 namespace gcode {
 
@@ -32,11 +35,15 @@ class PauseContext {
   PausePoint point(const MachineState& state, const Precision* precision) const {
     return PausePoint{state, retraction_.pending(), top_z_, precision};
   }
+  // The printed side of a seam (seam.hpp) with the printer in `state`.
+  StreamPoint stream_point(const MachineState& state) const;
 
  private:
   RetractionTracker retraction_;
   double top_z_ = 0;
   Box2 printed_;
+  CarriedSettings settings_;
+  bool e_mode_set_ = false;
 };
 
 struct ParkRules {

@@ -55,6 +55,21 @@ struct Join {
 // layer above.
 Join choose_join(LayerIndex& next, double printed_z, int z_decimals, double tolerance = kJoinTolerance);
 
+// The blocks that continue a print that reached `printed_z` (the top of
+// what is printed, with `printed_extent` its XY extent) with `next`, by the
+// join rules: the fills under the first new layer, then the new file from it
+// to its end. `onto` names the printed side in the seams' comments ("the
+// input's layer 12 (Z 2.4)"), `note_prefix` starts them. Throws
+// std::runtime_error when `next` has no layer above or lies elsewhere on the
+// bed; warns through `diag` (may be null) of a seam that may show.
+struct JoinBlocks {
+  Join join;
+  std::vector<SpliceBlock> blocks;
+  std::vector<std::string> report;   // what is printed from `next`, for the user
+};
+JoinBlocks join_blocks(LayerIndex& next, double printed_z, int z_decimals, const Box2& printed_extent,
+                       const std::string& onto, const std::string& note_prefix, Diagnostics* diag);
+
 // The last layer at or below `z` and the first one above it (0 when there
 // is none), reading the index as far as needed.
 struct Candidates {
@@ -83,7 +98,6 @@ class RelayerPlan : public SplicePlan {
 
  private:
   LayerAction join(const SpliceContext& context);
-  void warn_if_uneven(const Join& j) const;
 
   LayerIndex& next_;
   Options options_;
