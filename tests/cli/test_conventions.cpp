@@ -110,6 +110,22 @@ TEST_CASE("-i with standard input is a usage error in the common format", "[conv
   }
 }
 
+TEST_CASE("a --layer-marker pattern that does not compile is a usage error", "[conventions]") {
+  std::size_t tools = 0;
+  for (const auto& [tool, c] : filters()) {
+    if (run(gctest::tool_command(tool, "--help")).out.find("--layer-marker") == std::string::npos) continue;
+    ++tools;
+    std::regex format("^" + tool + ": [^\n]*layer-marker[^\n]+ \\(see " + tool + " --help\\)\n$");
+    gctest::RunResult r = run(gctest::tool_command(tool, c.changing + " --layer-marker '(' -"),
+                              read_file(gctest::fixture_path(kFixture)));
+    INFO(tool << ": " << r.err);
+    CHECK(r.status == 2);
+    CHECK(std::regex_match(r.err, format));
+    CHECK(r.out.empty());
+  }
+  CHECK(tools >= 5);
+}
+
 TEST_CASE("-i replaces the file only when the run succeeded and leaves no temp file", "[conventions]") {
   const std::string original = read_file(gctest::fixture_path(kFixture));
   for (const auto& [tool, c] : filters()) {

@@ -248,7 +248,7 @@ TEST_CASE("errors: missing layer, empty input, no extrusion, bad options", "[gc-
   CHECK(run(gctest::tool_command("gc-layers", "--extract abc " + quote(path))).status == 2);
   CHECK(run(gctest::tool_command("gc-layers", "--bogus " + quote(path))).status == 2);
   CHECK(run(gctest::tool_command("gc-layers", "/nonexistent/file.gcode")).status == 1);
-  CHECK(run(gctest::tool_command("gc-layers", "--layer-marker '(' " + quote(path))).status == 1);
+  CHECK(run(gctest::tool_command("gc-layers", "--layer-marker '(' " + quote(path))).status == 2);
 }
 
 TEST_CASE("-i rewrites the file atomically and only on success", "[gc-layers]") {

@@ -90,7 +90,7 @@ int main(int argc, char** argv) {
   app.add_option("--every", o.every, "Pause every N layers (before layers N+1, 2N+1, ...)")
       ->type_name("N")->check(positive)->group(where);
   app.add_option("--layer-marker", o.io.layer_marker, "RE2 pattern of the layer comment, for files from other slicers")
-      ->type_name("REGEX")->group(where);
+      ->type_name("REGEX")->check(gcode::cli::layer_marker_pattern())->group(where);
   app.add_flag("--dry-run", o.dry_run, "List where each pause goes (layer, Z, line, park) and write no G-code")
       ->group(where)->excludes(app.get_option("-i"));
 

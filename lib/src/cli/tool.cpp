@@ -37,6 +37,22 @@ const CLI::Validator& non_negative() {
   return v;
 }
 
+// A pattern that does not compile is the caller's mistake: a usage error
+// now, not a failure once the input is open.
+const CLI::Validator& layer_marker_pattern() {
+  static const CLI::Validator v(
+      [](std::string& pattern) {
+        try {
+          LayerMarkers markers(pattern);
+        } catch (const std::invalid_argument& e) {
+          return std::string(e.what());
+        }
+        return std::string();
+      },
+      "REGEX");
+  return v;
+}
+
 LayerMarkers FilterOptions::markers() const {
   return layer_marker.empty() ? LayerMarkers() : LayerMarkers(layer_marker);
 }
@@ -69,7 +85,8 @@ void Tool::add_filter_options(FilterOptions& o, unsigned parts) {
   if (parts & kLayerMarker)
     app_.add_option("--layer-marker", o.layer_marker,
                     "RE2 pattern that marks a layer start in a comment (first group: the slicer's number)")
-        ->type_name("REGEX");
+        ->type_name("REGEX")
+        ->check(layer_marker_pattern());
   if (parts & kEMode)
     app_.add_option("--e-mode", o.e_mode,
                     "E values of a file that never says M82/M83: relative, absolute, or auto (guessed, with a warning)")

@@ -95,6 +95,8 @@ class Tool {
 // Validators with one message style: "--retract: must be a number >= 0, not 'x'".
 const CLI::Validator& positive();
 const CLI::Validator& non_negative();
+// A --layer-marker pattern RE2 compiles.
+const CLI::Validator& layer_marker_pattern();
 
 // The version of the suite, the same in every tool (from CMake's project version).
 const char* version();
