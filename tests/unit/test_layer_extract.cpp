@@ -155,7 +155,8 @@ TEST_CASE("layer extract: positioning modes the left-out layers set are restored
   std::string g91 = four_layers("\n");
   g91.replace(g91.find(";LAYER:2\n"), 9, ";LAYER:2\nG91\n");
   Extracted r = extract(g91, {1, 4});
-  CHECK(r.out.find("; layers 2-3 left out\nG91\n;LAYER:3\n") != std::string::npos);  // no absolute travel
+  // No absolute travel; the E coordinate, for the next G90 makes E absolute.
+  CHECK(r.out.find("; layers 2-3 left out\nG92 E7.375\nG91\n;LAYER:3\n") != std::string::npos);
   // M83 in a left-out layer: the E mode is restored, no G92 in relative E.
   std::string m83 = four_layers("\n");
   m83.replace(m83.find(";LAYER:2\n"), 9, ";LAYER:2\nM83\n");
@@ -167,6 +168,31 @@ TEST_CASE("layer extract: positioning modes the left-out layers set are restored
   g90.replace(g90.find(";LAYER:2\n"), 9, ";LAYER:2\nG90\n");
   Extracted a = extract(g90, {1, 4});
   CHECK(a.out.find("; layers 2-3 left out\nG92 E4.125\nG90\nG0 Z") != std::string::npos);
+}
+
+TEST_CASE("layer extract: left-out layers that end in G91 keep E for the G90 after them", "[layer_extract]") {
+  // Layer 3 moves in G91 (Marlin: E relative too) and stays there; layer 4
+  // goes back to G90 and absolute E: its first extrusion pushes what it does
+  // in the whole file.
+  std::string text = four_layers("\n");
+  text.replace(text.find(";LAYER:2\nG1 Z0.6\nG1 X15 Y15\nG1 X10 Y10 E4.125\n"), 41,
+               ";LAYER:2\nG91\nG1 Z0.2\nG1 X5 Y-5\nG1 X-5 Y-5 E0.875\n");
+  text.replace(text.find(";LAYER:3\n"), 9, ";LAYER:3\nG90\n");
+  auto pushed = [](const std::string& gcode, const std::string& at) {
+    gcode::MachineState s;
+    gcode::MemoryLineSplitter split(gcode);
+    gcode::RawLine raw;
+    while (split.next(raw)) {
+      gcode::Move m = s.apply(gcode::Line::parse(raw.text));
+      if (raw.text == at) return m.filament;
+    }
+    FAIL("no line " << at);
+    return 0.0;
+  };
+  Extracted r = extract(text, {1, 4});
+  INFO(r.out);
+  CHECK(pushed(r.out, "G1 X40 Y30 E5 F1200") == Approx(pushed(text, "G1 X40 Y30 E5 F1200")));
+  CHECK(pushed(text, "G1 X40 Y30 E5 F1200") == Approx(0.875));
 }
 
 TEST_CASE("layer extract: temperatures and the fan the left-out layers set are restored", "[layer_extract]") {

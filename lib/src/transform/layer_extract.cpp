@@ -38,7 +38,10 @@ void LayerExtractor::write_bridge(const MachineState& target, bool travel, Emitt
                  ? fmt::format("; {}layer {} left out", options_.note_prefix, first_skipped_)
                  : fmt::format("; {}layers {}-{} left out", options_.note_prefix, first_skipped_, last_skipped_));
   skipped_ = false;
-  if (!target.relative_e) out.insert(builder_.start("G92").fixed('E', target.at(kE)).view());
+  // The E coordinate, where the next layer's numbers are absolute, or become
+  // so at its next G90 (Marlin's relative E that came with G91).
+  if (!target.relative_e || (target.relative_xyz && target.e_follows_g90))
+    out.insert(builder_.start("G92").fixed('E', target.at(kE)).view());
   if (target.firmware_retracted != printed_.firmware_retracted) out.insert(target.firmware_retracted ? "G10" : "G11");
   // The modes the left-out layers switched: the next layer's numbers are
   // written for them (Marlin's G90/G91 set the E mode too).
