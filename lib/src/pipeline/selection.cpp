@@ -63,6 +63,9 @@ bool LayerSelection::feature_selected(int feature) {
 
 bool LayerSelection::selects(const TrackedLine& t) {
   if (by_layer() && !(t.region == Region::Layer && in_selected_layer_)) return false;
+  // Features are the layers': the end code carries the last ;TYPE: (a park,
+  // heaters off) but is none of them.
+  if (!types_.empty() && t.region != Region::Layer) return false;
   return feature_selected(t.feature);
 }
 
