@@ -97,3 +97,16 @@ TEST_CASE("port: candidate ports come sorted by path", "[serial][port]") {
   CHECK(std::is_sorted(ports.begin(), ports.end(), [](const auto& a, const auto& b) { return a.path < b.path; }));
   for (const auto& p : ports) CHECK(p.path.rfind("/dev/", 0) == 0);
 }
+
+TEST_CASE("port: a pseudo-terminal that cannot make its link closes what it opened", "[serial][port]") {
+  auto open_fds = [] {
+    std::size_t n = 0;
+    for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator("/proc/self/fd")) ++n;
+    return n;
+  };
+  const std::size_t before = open_fds();
+  const std::string link = gctest::temp_dir() + "/no-such-folder/printer";
+  for (int i = 0; i < 3; ++i)
+    CHECK_THROWS_WITH(gcode::serial::PseudoTerminal(link), Catch::Contains("cannot create the link"));
+  CHECK(open_fds() == before);
+}

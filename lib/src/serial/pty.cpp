@@ -25,15 +25,21 @@ bool is_pseudo_terminal(int fd) {
 }
 
 PseudoTerminal::PseudoTerminal(const std::string& link_path) : link_(link_path) {
+  // A constructor that throws runs no destructor: what it opened it closes.
+  auto fail = [this](std::string message) {
+    int e = errno;
+    if (slave_ >= 0) ::close(slave_);
+    if (master_ >= 0) ::close(master_);
+    slave_ = master_ = -1;
+    throw std::runtime_error(fmt::format("{}: {}", message, std::strerror(e)));
+  };
   master_ = posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
-  if (master_ < 0 || grantpt(master_) != 0 || unlockpt(master_) != 0)
-    throw std::runtime_error(fmt::format("cannot create a pseudo-terminal: {}", std::strerror(errno)));
+  if (master_ < 0 || grantpt(master_) != 0 || unlockpt(master_) != 0) fail("cannot create a pseudo-terminal");
   char name[128];
-  if (ptsname_r(master_, name, sizeof name) != 0)
-    throw std::runtime_error(fmt::format("ptsname: {}", std::strerror(errno)));
+  if (ptsname_r(master_, name, sizeof name) != 0) fail("ptsname");
   slave_path_ = name;
   slave_ = ::open(name, O_RDWR | O_NOCTTY | O_CLOEXEC);
-  if (slave_ < 0) throw std::runtime_error(fmt::format("cannot open {}: {}", slave_path_, std::strerror(errno)));
+  if (slave_ < 0) fail("cannot open " + slave_path_);
   // Raw on both sides: no echo, no line editing, no CR/LF translation.
   termios tio{};
   tcgetattr(slave_, &tio);
@@ -43,12 +49,7 @@ PseudoTerminal::PseudoTerminal(const std::string& link_path) : link_(link_path) 
   cfmakeraw(&tio);
   tcsetattr(master_, TCSANOW, &tio);
   ::unlink(link_.c_str());
-  if (::symlink(slave_path_.c_str(), link_.c_str()) != 0) {
-    int e = errno;
-    ::close(slave_);
-    ::close(master_);
-    throw std::runtime_error(fmt::format("cannot create the link {}: {}", link_, std::strerror(e)));
-  }
+  if (::symlink(slave_path_.c_str(), link_.c_str()) != 0) fail("cannot create the link " + link_);
 }
 
 PseudoTerminal::~PseudoTerminal() {
