@@ -208,7 +208,7 @@ void PrintControl::withdraw_unsent() {
   // the one before the first taken back must be too (what was sent last).
   if (recent_count_ < 2) return;
   std::size_t n = std::min({recent_count_ - 1, kRecent - 1, sender_.pending()});
-  if (n == 0) return;
+  if (!can_rewind(n)) return;
   const Recent& first = recent_[(recent_count_ - n) % kRecent];
   std::vector<std::string> commands;
   if (sender_.withdraw_unsent(n, first.before, commands) != n) return;
@@ -221,11 +221,22 @@ void PrintControl::withdraw_unsent() {
   }
   for (auto it = held_.begin(); it != held_.end(); ++it) back.push_back(std::move(*it));
   held_.swap(back);
+  rewind(n);
+  diag_.info(fmt::format("pause now: {} commands not sent yet go after the pause", n));
+}
+
+bool PrintControl::can_rewind(std::size_t n) const {
+  return n > 0 && recent_count_ >= 2 && n <= std::min(recent_count_ - 1, kRecent - 1);
+}
+
+// The stream's state and the pause context go back to before the last `n`
+// commands handed to the sender (can_rewind(n)).
+void PrintControl::rewind(std::size_t n) {
+  const Recent& first = recent_[(recent_count_ - n) % kRecent];
   last_ = first.before;
   context_ = first.context;
   last_source_ = recent_[(recent_count_ - n - 1) % kRecent].source;
   recent_count_ -= n;
-  diag_.info(fmt::format("pause now: {} commands not sent yet go after the pause", n));
 }
 
 void PrintControl::pause_here(const MachineState& at) {
@@ -364,15 +375,21 @@ void PrintControl::resume() {
 void PrintControl::cancel() {
   if (state_ == PrintState::Cancelling) return;
   bool parked = state_ == PrintState::Paused && own_block_;
-  const MachineState& at = state_ == PrintState::Paused ? paused_ : last_;
   rush_.set_enabled(false);
   held_.clear();
   if (swap_) diag_.info(fmt::format("cancel: swap {} called off", swap_->path()));
   swap_.reset();
   // Nothing more of the file: what the sender holds unsent would otherwise
-  // go out before the safe end (a file read far ahead, the start code).
-  std::size_t dropped = sender_.discard_unsent();
-  if (dropped > 0) diag_.info(fmt::format("cancel: {} commands not sent yet are left out", dropped));
+  // go out before the safe end. The park starts from the last command on
+  // its way, so only commands the stream can be taken back over are left
+  // out (a park block not sent whole, or older commands, go out first).
+  const std::size_t unsent = sender_.pending();
+  if (state_ != PrintState::Paused && can_rewind(unsent)) {
+    rewind(unsent);
+    sender_.discard_unsent();
+    diag_.info(fmt::format("cancel: {} commands not sent yet are left out", unsent));
+  }
+  const MachineState& at = state_ == PrintState::Paused ? paused_ : last_;
   std::vector<std::string> lines;
   if (!parked) {
     PauseConfig c = config_.pause;

@@ -173,6 +173,8 @@ class PrintControl {
   bool at_layer_start() const;
   bool swap_here(const MachineState& at, int layers_done);
   void withdraw_unsent();
+  bool can_rewind(std::size_t n) const;
+  void rewind(std::size_t n);
   std::vector<std::string> put_back(const MachineState& from, const MachineState& to) const;
   void report_status();
   PauseRecord& start_record(std::string request);
