@@ -380,14 +380,17 @@ void PrintControl::cancel() {
   if (swap_) diag_.info(fmt::format("cancel: swap {} called off", swap_->path()));
   swap_.reset();
   // Nothing more of the file: what the sender holds unsent would otherwise
-  // go out before the safe end. The park starts from the last command on
-  // its way, so only commands the stream can be taken back over are left
-  // out (a park block not sent whole, or older commands, go out first).
+  // go out before the safe end (a long read-ahead). The park starts from the
+  // last command on its way where the stream can be taken back over the
+  // rest (gc-send holds a command or two); past that, from the last one read.
+  // A pause block not sent whole goes out first.
   const std::size_t unsent = sender_.pending();
-  if (state_ != PrintState::Paused && can_rewind(unsent)) {
-    rewind(unsent);
+  if (state_ != PrintState::Paused && unsent > 0) {
+    const bool exact = can_rewind(unsent);
+    if (exact) rewind(unsent);
     sender_.discard_unsent();
-    diag_.info(fmt::format("cancel: {} commands not sent yet are left out", unsent));
+    diag_.info(fmt::format("cancel: {} commands not sent yet are left out{}", unsent,
+                           exact ? "" : " (the park counts from the last command read)"));
   }
   const MachineState& at = state_ == PrintState::Paused ? paused_ : last_;
   std::vector<std::string> lines;
