@@ -40,3 +40,17 @@ TEST_CASE("progress: the status JSON parses and names what the line shows", "[se
   CHECK(line.find("ETA") == std::string::npos);
   CHECK(line.find("last pause 2.9 mm") != std::string::npos);
 }
+
+TEST_CASE("progress: the ETA from the estimator, paced by the print so far", "[serial]") {
+  using gcode::serial::estimated_remaining;
+  // A 1000 s estimate, 400 s of it handed over in 200 s of printing (a time
+  // scale of 2, a faster printer): 600 estimated seconds left take 300.
+  CHECK(estimated_remaining(1000, 400, 200) == Approx(300));
+  // Slower than the model: 400 estimated seconds took 600.
+  CHECK(estimated_remaining(1000, 400, 600) == Approx(900));
+  // Too early to tell, no estimate, or past it.
+  CHECK(estimated_remaining(1000, 50, 200) < 0);
+  CHECK(estimated_remaining(1000, 400, 10) < 0);
+  CHECK(estimated_remaining(0, 400, 200) < 0);
+  CHECK(estimated_remaining(1000, 1200, 600) == Approx(0));
+}

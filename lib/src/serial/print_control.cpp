@@ -116,11 +116,8 @@ void PrintControl::process(std::string_view command, std::uint64_t source, int l
     hold_here(fmt::format("the file's pause at line {}", source));
     return;
   }
-  Recent& r = recent_[recent_count_++ % kRecent];
-  r.before = last_;
-  r.context = context_before_;
-  r.source = source;
-  r.layer = layer;
+  forget_sent();
+  recent_.push_back(Recent{last_, context_before_, source, layer, sender_.last_submitted() + 1});
   sender_.submit(command, source, layer);
   last_ = after;
   last_source_ = source;
@@ -204,19 +201,17 @@ void PrintControl::request_pause(std::string request, bool now) {
 // block: they become the first held lines, and the stream's state and the
 // pause context go back to before them.
 void PrintControl::withdraw_unsent() {
-  // Only the commands of the file since the last block are known here, and
-  // the one before the first taken back must be too (what was sent last).
-  if (recent_count_ < 2) return;
-  std::size_t n = std::min({recent_count_ - 1, kRecent - 1, sender_.pending()});
+  // Only the commands of the file since the last block are known here.
+  forget_sent();
+  std::size_t n = std::min(recent_.size(), sender_.pending());
   if (!can_rewind(n)) return;
-  const Recent& first = recent_[(recent_count_ - n) % kRecent];
+  const std::size_t from = recent_.size() - n;
   std::vector<std::string> commands;
-  if (sender_.withdraw_unsent(n, first.before, commands) != n) return;
+  if (sender_.withdraw_unsent(n, recent_[from].before, commands) != n) return;
   std::deque<Held> back;
   for (std::size_t i = 0; i < n; ++i) {
-    std::size_t k = recent_count_ - n + i;
-    const Recent& r = recent_[k % kRecent];
-    const MachineState& after = i + 1 < n ? recent_[(k + 1) % kRecent].before : last_;
+    const Recent& r = recent_[from + i];
+    const MachineState& after = i + 1 < n ? recent_[from + i + 1].before : last_;
     back.push_back(Held{commands[i], r.source, r.layer, after, false});
   }
   for (auto it = held_.begin(); it != held_.end(); ++it) back.push_back(std::move(*it));
@@ -225,18 +220,36 @@ void PrintControl::withdraw_unsent() {
   diag_.info(fmt::format("pause now: {} commands not sent yet go after the pause", n));
 }
 
-bool PrintControl::can_rewind(std::size_t n) const {
-  return n > 0 && recent_count_ >= 2 && n <= std::min(recent_count_ - 1, kRecent - 1);
+// What the sender has sent can no longer be taken back.
+void PrintControl::forget_sent() {
+  const long long sent = sender_.last_submitted() - static_cast<long long>(sender_.pending());
+  while (!recent_.empty() && recent_.front().number <= sent) {
+    sent_source_ = recent_.front().source;
+    recent_.pop_front();
+  }
+}
+
+// Lines of its own go to the sender: what came before them cannot be taken
+// back over them.
+void PrintControl::forget_recent() {
+  recent_.clear();
+  sent_source_ = last_source_;
+}
+
+// Whether the last `n` commands handed to the sender are the file's, unsent.
+bool PrintControl::can_rewind(std::size_t n) {
+  forget_sent();
+  return n > 0 && n <= recent_.size() && n <= sender_.pending();
 }
 
 // The stream's state and the pause context go back to before the last `n`
 // commands handed to the sender (can_rewind(n)).
 void PrintControl::rewind(std::size_t n) {
-  const Recent& first = recent_[(recent_count_ - n) % kRecent];
-  last_ = first.before;
-  context_ = first.context;
-  last_source_ = recent_[(recent_count_ - n - 1) % kRecent].source;
-  recent_count_ -= n;
+  const std::size_t from = recent_.size() - n;
+  last_ = recent_[from].before;
+  context_ = recent_[from].context;
+  last_source_ = from > 0 ? recent_[from - 1].source : sent_source_;
+  recent_.resize(from);
 }
 
 void PrintControl::pause_here(const MachineState& at) {
@@ -292,7 +305,7 @@ void PrintControl::hold_here(std::string request) {
 }
 
 void PrintControl::submit_lines(const std::vector<std::string>& lines, int layer) {
-  recent_count_ = 0;  // the newest commands are no longer the file's
+  forget_recent();  // the newest commands are no longer the file's
   for (const std::string& l : lines) sender_.submit(l, 0, layer);
 }
 
@@ -359,6 +372,7 @@ void PrintControl::resume() {
   submit_lines(lines, layer_);
   resume_lines_.clear();
   if (pauses_.back().wall_paused < 0) pauses_.back().wall_paused = EventLoop::now();
+  paused_seconds_ += EventLoop::now() - pauses_.back().wall_paused;
   state_ = PrintState::Printing;
   holding_ = false;
   if (swap_ && at_layer_start()) {
@@ -380,17 +394,19 @@ void PrintControl::cancel() {
   if (swap_) diag_.info(fmt::format("cancel: swap {} called off", swap_->path()));
   swap_.reset();
   // Nothing more of the file: what the sender holds unsent would otherwise
-  // go out before the safe end (a long read-ahead). The park starts from the
-  // last command on its way where the stream can be taken back over the
-  // rest (gc-send holds a command or two); past that, from the last one read.
-  // A pause block not sent whole goes out first.
+  // go out before the safe end (a long read-ahead, a start code). They are
+  // left out and the park starts from before them, from the last command on
+  // its way; lines of gc-send's own among them (a resume block) go out
+  // first, and the park follows them.
   const std::size_t unsent = sender_.pending();
   if (state_ != PrintState::Paused && unsent > 0) {
-    const bool exact = can_rewind(unsent);
-    if (exact) rewind(unsent);
-    sender_.discard_unsent();
-    diag_.info(fmt::format("cancel: {} commands not sent yet are left out{}", unsent,
-                           exact ? "" : " (the park counts from the last command read)"));
+    if (can_rewind(unsent)) {
+      rewind(unsent);
+      sender_.discard_unsent();
+      diag_.info(fmt::format("cancel: {} commands not sent yet are left out", unsent));
+    } else {
+      diag_.info(fmt::format("cancel: {} commands not sent yet go out first", unsent));
+    }
   }
   const MachineState& at = state_ == PrintState::Paused ? paused_ : last_;
   std::vector<std::string> lines;
@@ -419,6 +435,13 @@ void PrintControl::cancel() {
                           parked ? "heaters and motors off" : "retract, lift, park, heaters and motors off"));
 }
 
+double PrintControl::paused_seconds(double now) const {
+  double s = paused_seconds_;
+  if (state_ == PrintState::Paused && !pauses_.empty() && pauses_.back().wall_paused >= 0)
+    s += now - pauses_.back().wall_paused;
+  return s;
+}
+
 bool PrintControl::interrupt() {
   ++interrupts_;
   if (interrupts_ > 1) return false;
@@ -439,7 +462,7 @@ void PrintControl::user_gcode(const std::string& text) {
     return;
   }
   std::string copy(command);
-  recent_count_ = 0;
+  forget_recent();
   sender_.submit(copy, 0, layer_);
   track(copy, paused_);
   ++user_commands_;
@@ -467,7 +490,7 @@ void PrintControl::insert_file(const std::string& path) {
     return;
   }
   std::size_t sent = 0;
-  recent_count_ = 0;
+  forget_recent();
   for (const std::string& l : split_lines(text)) {
     Line line = Line::parse(l);
     if (line.kind == CommandKind::None || line.kind == CommandKind::Host || line.is_m(110)) continue;
@@ -540,7 +563,7 @@ bool PrintControl::swap_here(const MachineState& at, int layers_done) {
   ++swaps_;
   last_ = at;
   held_.clear();
-  recent_count_ = 0;  // what went out last is no longer the input's
+  forget_recent();  // what went out last is no longer the input's
   layer_ = layers_done;
   on_swap(std::move(next), layers_done);
   return true;

@@ -1,5 +1,7 @@
 #include "gcode/serial/progress.hpp"
 
+#include <algorithm>
+
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -18,6 +20,12 @@ std::string clock_text(double seconds) {
 }
 
 }  // namespace
+
+double estimated_remaining(double estimated_total, double estimated_done, double printing_seconds) {
+  if (estimated_total <= 0 || estimated_done < 0.1 * estimated_total || printing_seconds < 30) return -1;
+  const double pace = printing_seconds / estimated_done;
+  return std::max(0.0, estimated_total - estimated_done) * pace;
+}
 
 std::string progress_line(const ProgressSnapshot& s) {
   std::string line = fmt::format("{:<10}", s.state);

@@ -12,6 +12,7 @@
 
 #include "gcode/cli/io.hpp"
 #include "gcode/pipeline/pipeline.hpp"
+#include "gcode/report/layer_time.hpp"
 #include "gcode/serial/event_loop.hpp"
 #include "gcode/serial/port.hpp"
 #include "gcode/serial/send_session.hpp"
@@ -158,15 +159,19 @@ int run_send_job(SendJob& job, Diagnostics& diag) {
         }});
   }
   if (!job.file.empty() && job.file != "-" && !job.quiet) {
-    // A file's layers are counted before it is sent (one quick pass), so the
-    // progress can say "layer 12/40".
+    // A file's layers are counted and its time estimated before it is sent
+    // (one quick pass), so the progress can say "layer 12/40" and give an
+    // ETA from the estimator.
     InputFile again(job.file);
     struct stat st{};
     if (::fstat(again.fd(), &st) == 0 && S_ISREG(st.st_mode)) {
       LayerMarkers markers;
       Pipeline count(markers);
+      LayerTimer timer(sender_estimator_options());
+      count.add(timer);
       count.run(again.fd());
       session.set_total_layers(count.tracker().layer_count());
+      session.set_estimated_time(timer.times().total());
     }
   }
   if (session.fifo() != nullptr) diag.info(fmt::format("control FIFO: {}", session.fifo()->path()));

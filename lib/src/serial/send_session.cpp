@@ -172,8 +172,9 @@ void SendSession::start_swap(std::unique_ptr<JoinStream> next, int layers_done) 
   current_ = segments_.back().get();
   control_->add_stages(current_->pipeline);
   current_->pipeline.add(*current_);
-  // The layers to come are the other file's: as far as known.
+  // The layers and time to come are the other file's: as far as known.
   total_layers_ = 0;
+  estimated_total_ = 0;
   // The input is read no further.
   if (input_watch_ >= 0) loop_.set_events(input_watch_, 0);
 }
@@ -325,7 +326,10 @@ ProgressSnapshot SendSession::snapshot() const {
   s.lines = st.lines;
   s.elapsed = st.print_start >= 0 ? EventLoop::now() - st.print_start : 0;
   s.lines_per_second = s.elapsed > 0 ? static_cast<double>(st.lines) / s.elapsed : 0;
-  if (s.percent > 1 && s.elapsed > 0) s.eta = s.elapsed * (100 - s.percent) / s.percent;
+  if (current_ == nullptr)
+    s.eta = estimated_remaining(estimated_total_, sender_.estimated_time(),
+                                s.elapsed - control_->paused_seconds(EventLoop::now()));
+  if (s.eta < 0 && s.percent > 1 && s.elapsed > 0) s.eta = s.elapsed * (100 - s.percent) / s.percent;
   s.speed = control_->speed();
   s.temperatures = sender_.temperatures();
   s.pauses = static_cast<int>(control_->pauses().size());

@@ -36,7 +36,9 @@ bool is_instant(const Line& line) {
   }
 }
 
-EstimatorOptions estimator_options() {
+}  // namespace
+
+EstimatorOptions sender_estimator_options() {
   EstimatorOptions o;
   o.heat_time = false;  // heating has no bound here: keepalives tell
   o.home_time = 0;
@@ -44,14 +46,12 @@ EstimatorOptions estimator_options() {
   return o;
 }
 
-}  // namespace
-
 Sender::Sender(const SenderConfig& config, Logger log)
     : config_(config),
       log_(std::move(log)),
       flow_(config.flow, config.queue, config.rx_buffer),
       clock_(config.link_bytes_per_second, config.time_scale, config.planner_blocks),
-      estimator_(estimator_options(), this),
+      estimator_(sender_estimator_options(), this),
       ring_(2048) {}
 
 void Sender::log(LogLevel level, std::uint64_t input_line, std::string_view message) const {

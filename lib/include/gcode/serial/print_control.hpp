@@ -30,7 +30,6 @@
 //
 // The printer's own //action:pause (its pause button with host actions) is a
 // `pause`, //action:resume a `resume`, //action:cancel a `cancel`.
-#include <array>
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -138,6 +137,9 @@ class PrintControl {
   std::function<void(std::unique_ptr<JoinStream> next, int layers_done)> on_swap;
   const SeamOptions& seam_options() const { return config_.seam; }
   std::uint64_t swaps() const { return swaps_; }
+  // Wall seconds the printer stood paused (the block done until the resume),
+  // the pause going on included.
+  double paused_seconds(double now) const;
 
  private:
   struct Held {
@@ -148,15 +150,16 @@ class PrintControl {
     bool host_pause = false;
     bool extruding = false;
   };
-  // The last commands handed to the sender, for a pause now that takes
-  // back those not sent yet.
+  // The file's commands handed to the sender and maybe not sent yet, since
+  // the last lines of its own (a block): a pause now takes back those not
+  // sent, a cancel leaves them out, and both go on from before them.
   struct Recent {
     MachineState before;
     PauseContext context;
     std::uint64_t source = 0;
     int layer = 0;
+    long long number = 0;  // the sender's
   };
-  static constexpr std::size_t kRecent = 16;
   void process(std::string_view command, std::uint64_t source, int layer, const MachineState& after, bool host_pause,
                bool extruding);
   void submit_lines(const std::vector<std::string>& lines, int layer);
@@ -173,7 +176,9 @@ class PrintControl {
   bool at_layer_start() const;
   bool swap_here(const MachineState& at, int layers_done);
   void withdraw_unsent();
-  bool can_rewind(std::size_t n) const;
+  void forget_sent();
+  void forget_recent();
+  bool can_rewind(std::size_t n);
   void rewind(std::size_t n);
   std::vector<std::string> put_back(const MachineState& from, const MachineState& to) const;
   void report_status();
@@ -201,8 +206,8 @@ class PrintControl {
   std::vector<std::string> resume_lines_;
   double safe_z_ = 0;
   std::deque<Held> held_;
-  std::array<Recent, kRecent> recent_;
-  std::size_t recent_count_ = 0;     // entries ever written (the newest at (count - 1) % kRecent)
+  std::deque<Recent> recent_;
+  std::uint64_t sent_source_ = 0;    // the source of the last command known sent (before recent_)
   PauseContext context_before_;      // before the line being handled
   std::string scratch_;
   std::vector<PauseRecord> pauses_;
@@ -215,6 +220,7 @@ class PrintControl {
   bool sent_extrusion_ = false;      // an extruding move went out since the last layer's start
   std::unique_ptr<JoinStream> swap_; // asked for, not started yet
   std::uint64_t swaps_ = 0;
+  double paused_seconds_ = 0;        // of the pauses resumed
 };
 
 }  // namespace gcode::serial

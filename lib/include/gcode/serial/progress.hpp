@@ -35,6 +35,14 @@ struct ProgressOptions {
   std::string status_file;      // "" = none
 };
 
+// The time left, from the estimator: the printer seconds it gives the whole
+// input and what was handed over so far, paced by how the print ran (wall
+// seconds spent printing, pauses left out, per estimated second: a printer
+// slower than its model, a time scale, a speed factor). -1 until a tenth of
+// the estimate and half a minute of printing have run, or without an
+// estimate (then the caller goes by the rate of the input).
+double estimated_remaining(double estimated_total, double estimated_done, double printing_seconds);
+
 // "printing  layer 12/40  31.0 %  812 lines/s  0:42 elapsed  ETA 1:33"
 std::string progress_line(const ProgressSnapshot& s);
 std::string progress_json(const ProgressSnapshot& s);

@@ -51,6 +51,9 @@ class SendSession : private Stage {
   void set_progress(const ProgressOptions& options) { progress_.emplace(options); }
   // The layers of the whole input, when known beforehand (a regular file).
   void set_total_layers(int layers) { total_layers_ = layers; }
+  // The estimator's printer seconds for the whole input (sender_estimator_options),
+  // when known beforehand: the ETA goes by it.
+  void set_estimated_time(double seconds) { estimated_total_ = seconds; }
   PrintControl* control() { return control_.get(); }
   const ControlFifo* fifo() const { return fifo_.get(); }
 
@@ -108,6 +111,7 @@ class SendSession : private Stage {
   std::string_view shown_state_;   // what the progress last showed
   int shown_layer_ = -1;
   int total_layers_ = 0;
+  double estimated_total_ = 0;
   // Swapped-in files, all kept: a swap starts inside a pipeline's call.
   std::vector<std::unique_ptr<Segment>> segments_;
   Segment* current_ = nullptr;  // what is fed now (null: the input)

@@ -98,6 +98,11 @@ struct SenderConfig {
   bool finish_with_m400 = true;
 };
 
+// How the sender times what it sends (Marlin's 16-block planner; heating
+// and homing left out: nothing in a file bounds them): a time estimate of a
+// whole file to hold against it is made with the same.
+EstimatorOptions sender_estimator_options();
+
 enum class SenderState : std::uint8_t { Idle, Handshake, Capabilities, Printing, Done, Failed, Cancelled };
 
 enum class LogLevel : std::uint8_t { Trace, Info, Warning };  // Trace: every line both ways
@@ -207,6 +212,9 @@ class Sender : private TimeSink {
   bool finished() const { return state_ == SenderState::Done || state_ == SenderState::Failed || (state_ == SenderState::Cancelled && output().empty()); }
   const std::string& failure() const { return failure_; }
   const SenderStats& stats() const { return stats_; }
+  // Printer seconds of the moves handed over whose time is final (the
+  // estimator's, as sender_estimator_options() sets it: no heating, no homing).
+  double estimated_time() const { return estimator_.elapsed(); }
   const Position& last_acknowledged() const { return last_acked_; }
   const FirmwareInfo& firmware() const { return firmware_; }
   const FlowControl& flow() const { return flow_; }
