@@ -109,6 +109,25 @@ double HeightMap::fraction(double s, double z) const {
   return top * (1 - fy) + bottom * fy;
 }
 
+void HeightMap::knots(double s0, double s1, std::vector<double>& out) const {
+  const double b = closed() ? 0.0 : options_.border;
+  const double picture = length_ - 2 * b;  // s span of the picture
+  const double pixel = picture / image_.width();
+  auto add = [&](double k) {
+    if (k > s0 && k < s1) out.push_back(k);
+  };
+  if (!closed() && b > 0) add(b);
+  // Pixel centre i sits at b + (i + 0.5) x pixel (a cylinder's repeat every turn).
+  const double first = std::ceil((s0 - b) / pixel - 0.5);
+  for (double i = std::max(first, closed() ? first : 0.0); ; ++i) {
+    if (!closed() && i >= image_.width()) break;
+    const double k = b + (i + 0.5) * pixel;
+    if (k >= s1) break;
+    add(k);
+  }
+  if (!closed() && b > 0) add(length_ - b);
+}
+
 double HeightMap::thickness(double s, double z) const {
   return options_.min_thickness + fraction(s, z) * (options_.max_thickness - options_.min_thickness);
 }

@@ -13,8 +13,10 @@ namespace gcode::litho {
 
 namespace {
 
-constexpr int kXYZ = 3;
-constexpr int kE = 6;
+constexpr int kXY = 4;   // X and Y: pieces on steep edges are a few micrometres along the base
+constexpr double kXYUnit = 1e-4;
+constexpr int kXYZ = 3;  // Z
+constexpr int kE = 7;
 
 std::string num(double v, int decimals = 3) {
   char b[kMaxNumberChars];
@@ -63,16 +65,16 @@ class Emitter {
   // the written F, are what the planner asked for. A piece that rounds to no
   // length at all is not written; its plastic goes to the next piece.
   void extrude_to(const Piece& piece) {
-    const std::int64_t x = to_scaled(piece.to.x, kXYZ);
-    const std::int64_t y = to_scaled(piece.to.y, kXYZ);
+    const std::int64_t x = to_scaled(piece.to.x, kXY);
+    const std::int64_t y = to_scaled(piece.to.y, kXY);
     if (x == x_ && y == y_) {
       pending_volume_ += piece.volume;
       return;
     }
-    const double length = std::hypot(static_cast<double>(x - x_), static_cast<double>(y - y_)) / 1000;
+    const double length = std::hypot(static_cast<double>(x - x_), static_cast<double>(y - y_)) * kXYUnit;
     b_.start("G1");
     feed(b_, piece.speed);
-    b_.word('X', piece.to.x, kXYZ).word('Y', piece.to.y, kXYZ);
+    b_.word('X', piece.to.x, kXY).word('Y', piece.to.y, kXY);
     e_exact_ += (piece.width * layer_height_ * length + pending_volume_) / filament_area_;
     pending_volume_ = 0;
     const std::int64_t total = to_scaled(e_exact_, kE);
@@ -96,7 +98,7 @@ class Emitter {
   // Travel to `to` at height `z` (Z first when going up, last when going down).
   void travel(Point to, double z) {
     const double d = std::hypot(to.x - at_.x, to.y - at_.y);
-    const bool moves_xy = to_scaled(to.x, kXYZ) != x_ || to_scaled(to.y, kXYZ) != y_;
+    const bool moves_xy = to_scaled(to.x, kXY) != x_ || to_scaled(to.y, kXY) != y_;
     const bool moves_z = to_scaled(z, kXYZ) != to_scaled(z_, kXYZ);
     if (!moves_xy && !moves_z) return;
     if (d > options_.retract_min_travel || moves_z) retract(true);
@@ -104,7 +106,7 @@ class Emitter {
     if (moves_xy) {
       b_.start("G0");
       feed(b_, options_.travel_speed);
-      b_.word('X', to.x, kXYZ).word('Y', to.y, kXYZ);
+      b_.word('X', to.x, kXY).word('Y', to.y, kXY);
       line(b_.view());
       set_at(to);
     }
@@ -134,8 +136,8 @@ class Emitter {
  private:
   void set_at(Point at) {
     at_ = at;
-    x_ = to_scaled(at.x, kXYZ);
-    y_ = to_scaled(at.y, kXYZ);
+    x_ = to_scaled(at.x, kXY);
+    y_ = to_scaled(at.y, kXY);
   }
 
   void move_z(double z) {

@@ -45,7 +45,8 @@ void LithoOptions::validate(const HeightMapOptions& map) const {
   require_positive(r.max_pass_width, "--max-pass-width");
   require_positive(r.min_pass_width, "--min-pass-width");
   require_positive(r.resolution, "--resolution");
-  require_positive(r.max_step, "the thickness step per piece");
+  require_positive(r.edge_gap, "the gap left beside a bead");
+  require_positive(r.surface_tolerance, "the surface tolerance");
   require_positive(r.min_piece, "the shortest piece");
   if (!(r.first_layer_factor > 0 && r.first_layer_factor <= 1))
     throw std::invalid_argument("the first-layer speed factor must be above 0 and at most 1");
@@ -174,6 +175,72 @@ void LithophanePlanner::add_cap(Point from, Point to, double rate, Path& path, L
   ++stats.pieces;
 }
 
+// Douglas-Peucker over the knots strictly between s0 and s1: a knot stays
+// where the chord of the thickness through the stretch's kept ends misses it
+// by more than the surface tolerance. `kept` gets the kept knots in order.
+void LithophanePlanner::keep_knots(double s0, double s1, double z, const std::vector<double>& knots,
+                                   std::vector<double>& kept) const {
+  kept.clear();
+  if (knots.empty()) return;
+  const double tol = options_.surface_tolerance;
+  // Ranges of knot indices [lo, hi) between two kept points (a, b), done depth first, left to right.
+  struct Range {
+    std::size_t lo, hi;
+    double a, ta, b, tb;
+  };
+  Range stack[64];
+  int top = 0;
+  stack[top++] = {0, knots.size(), s0, map_.thickness(s0, z), s1, map_.thickness(s1, z)};
+  while (top > 0) {
+    const Range r = stack[--top];
+    double worst = tol;
+    std::size_t at = r.hi;
+    double t_at = 0;
+    for (std::size_t i = r.lo; i < r.hi; ++i) {
+      // A knot within min piece of a kept point would make a sliver of a piece.
+      if (knots[i] - r.a < options_.min_piece || r.b - knots[i] < options_.min_piece) continue;
+      const double t = map_.thickness(knots[i], z);
+      const double chord = r.ta + (r.tb - r.ta) * (knots[i] - r.a) / (r.b - r.a);
+      if (std::abs(t - chord) > worst) {
+        worst = std::abs(t - chord);
+        at = i;
+        t_at = t;
+      }
+    }
+    if (at == r.hi) continue;
+    if (top + 2 > 64) {  // deeper than any picture needs: keep the rest as they are
+      for (std::size_t i = r.lo; i < r.hi; ++i) kept.push_back(knots[i]);
+      continue;
+    }
+    // Right half first on the stack, so the left half comes out first.
+    stack[top++] = {at + 1, r.hi, knots[at], t_at, r.b, r.tb};
+    stack[top++] = {r.lo, at, r.a, r.ta, knots[at], t_at};
+    kept.push_back(knots[at]);
+  }
+  std::sort(kept.begin(), kept.end());
+}
+
+// How many equal pieces a stretch between two columns needs. A bead has one
+// width per piece while its strip's depth changes linearly along it, so at
+// a piece's ends two neighbouring beads leave |change of one + change of the
+// other| / 4 between them (measured across the band); cut until that is at
+// most the edge gap everywhere, but no piece shorter than min piece.
+int LithophanePlanner::cuts_between(const Column& c0, const Column& c1, double length) const {
+  const double dwall = c1.wall - c0.wall;
+  double worst = 0;
+  if (c0.gap == 0 && c1.gap == 0) {
+    worst = std::abs(2 * dwall);  // the two walls meet
+  } else {
+    const double g = std::min(c0.gap, c1.gap);
+    const int passes = std::max(1, static_cast<int>(std::ceil(g / options_.max_pass_width - 1e-9)));
+    const double dpass = (c1.gap - c0.gap) / passes;
+    worst = std::max(std::abs(dwall + dpass), passes > 1 ? std::abs(2 * dpass) : 0.0);
+  }
+  const double needed = std::ceil(worst / (4 * options_.edge_gap) - 1e-9);
+  const double most = std::max(1.0, std::floor(length / options_.min_piece));
+  return static_cast<int>(std::clamp(needed, 1.0, most));
+}
+
 void LithophanePlanner::plan_layer(int index, LithoLayer& out) const {
   if (index < 0 || index >= layers_) throw std::out_of_range("LithophanePlanner::plan_layer: no such layer");
   out.index = index;
@@ -194,25 +261,57 @@ void LithophanePlanner::plan_layer(int index, LithoLayer& out) const {
   const double first = map_.closed() ? 0.0 : lw;
   const double span = map_.closed() ? length : length - 2 * lw;
   const int n = std::max(map_.closed() ? 16 : 1, static_cast<int>(std::ceil(span / options_.resolution - 1e-9)));
-  s.reserve(static_cast<std::size_t>(n) + 1);
-  cols.reserve(static_cast<std::size_t>(n) + 1);
-  const double step = span / n;
-  const int most_cuts = std::max(1, static_cast<int>(step / options_.min_piece));
-  Column next = column(first, zs);
+  s.reserve(static_cast<std::size_t>(n) * 2 + 1);
+  cols.reserve(static_cast<std::size_t>(n) * 2 + 1);
+  std::vector<double> knots;
+  std::vector<double> kept;
+  double s_prev = first;
+  Column c_prev = column(first, zs);
   for (int k = 0; k < n; ++k) {
-    const double s0 = first + span * k / n;
-    const Column c0 = next;
-    next = column(first + span * (k + 1) / n, zs);
-    s.push_back(s0);
-    cols.push_back(c0);
-    const int cuts = std::min(most_cuts, static_cast<int>(std::ceil(std::abs(next.t - c0.t) / options_.max_step)));
-    for (int j = 1; j < cuts; ++j) {
-      s.push_back(s0 + step * j / cuts);
-      cols.push_back(column(s.back(), zs));
+    const double s_next = first + span * (k + 1) / n;
+    // The picture's knots inside this step that its chord would miss (the
+    // corners of hard edges, thin lines between two samples), then each
+    // stretch cut so that no bead beside another leaves a gap.
+    knots.clear();
+    map_.knots(s_prev, s_next, knots);
+    keep_knots(s_prev, s_next, zs, knots, kept);
+    kept.push_back(s_next);
+    auto stretch = [&](double s_to, const Column& c_to, int cuts) {
+      s.push_back(s_prev);
+      cols.push_back(c_prev);
+      for (int j = 1; j < cuts; ++j) {
+        s.push_back(s_prev + (s_to - s_prev) * j / cuts);
+        cols.push_back(column(s.back(), zs));
+      }
+      s_prev = s_to;
+      c_prev = c_to;
+    };
+    for (const double s_to : kept) {
+      const Column c_to = column(s_to, zs);
+      if ((c_prev.gap > 0) != (c_to.gap > 0)) {
+        // A pass begins or ends here: it starts at min pass width while the
+        // walls step from sharing the band to one line width each. That step
+        // gets a piece of its own, min piece long, so the beads on either
+        // side of it change smoothly and cutting can close their gaps.
+        double a = s_prev, b = s_to;  // a on s_prev's side of the switch, b on s_to's
+        while (b - a > 2 * options_.min_piece) {
+          const double mid = (a + b) / 2;
+          ((column(mid, zs).gap > 0) == (c_prev.gap > 0) ? a : b) = mid;
+        }
+        if (a - s_prev < options_.min_piece) a = s_prev;  // no sliver of a piece on either side
+        if (s_to - b < options_.min_piece) b = s_to;
+        const Column ca = column(a, zs);
+        const Column cb = column(b, zs);
+        if (a > s_prev) stretch(a, ca, cuts_between(c_prev, ca, a - s_prev));
+        stretch(b, cb, 1);
+        if (b < s_to) stretch(s_to, c_to, cuts_between(cb, c_to, s_to - b));
+        continue;
+      }
+      stretch(s_to, c_to, cuts_between(c_prev, c_to, s_to - s_prev));
     }
   }
   s.push_back(first + span);
-  cols.push_back(next);
+  cols.push_back(c_prev);
   if (map_.closed()) cols.back() = cols.front();  // the same column, not a second sample of it
 
   auto wall_strip = [&](double s0, const Column& c0, double s1, const Column& c1, bool outer) {

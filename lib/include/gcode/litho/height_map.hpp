@@ -20,6 +20,7 @@
 // `border` is a frame at full thickness around the picture (flat: all four
 // sides; cylinder: top and bottom), added outside the picture's area.
 #include <cstdint>
+#include <vector>
 
 #include "gcode/litho/image.hpp"
 
@@ -69,6 +70,11 @@ class HeightMap {
   double thickness(double s, double z) const;
   // The share of the thickness range at (s, z), 0..1 (1 in the border).
   double fraction(double s, double z) const;
+  // The thickness at a fixed z is linear in s between knots: the pixel
+  // centres (and the border's edges, where it jumps). Appends the knots
+  // strictly between s0 and s1 (s0 < s1; a cylinder's s may run past one
+  // turn) to `out` in increasing order.
+  void knots(double s0, double s1, std::vector<double>& out) const;
   // Bed XY of the point `depth` mm out from the base at `s`, for a
   // lithophane standing on (center_x, center_y): a flat plate's base face
   // lies max_thickness / 2 in front of the centre line (so the plate's
