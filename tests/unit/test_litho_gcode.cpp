@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gcode/litho/litho_gcode.hpp"
+#include "gcode/litho/path_order.hpp"
 #include "litho_check.hpp"
 #include "test_support.hpp"
 
@@ -154,14 +155,15 @@ TEST_CASE("litho G-code: each bead has its planned width and E rounding is carri
   const LithophanePlanner planner(map, LithoOptions{});
   const Generated g = generate(planner);
   const littest::Replayed r = littest::replay(g.text);
-  // Beads come out in the planner's order, one per piece: E over the length
+  // Beads come out in the order of path_order.hpp, one per piece: E over the length
   // as written is the planned width, and the running sum of E stays within
   // the last digit of the exact running sum (rounding carried, not dropped).
   std::size_t bead = 0;
   double exact = 0, written = 0, worst_width = 0;
   gcode::litho::LithoLayer layer;
+  gcode::litho::Point head;
   for (int i = 0; i < planner.layer_count(); ++i) {
-    planner.plan_layer(i, layer);
+    gcode::litho::plan_ordered_layer(planner, i, layer, head);
     for (const auto& path : layer.paths)
       for (const auto& piece : path.pieces) {
         REQUIRE(bead < r.beads.size());

@@ -187,7 +187,7 @@ int main(int argc, char** argv) {
   app.add_option("--start", o.start, "Start G-code from FILE instead of the built-in Marlin start")->type_name("FILE")->group(program);
   app.add_option("--end", o.end, "End G-code from FILE instead of the built-in one")->type_name("FILE")->group(program);
   speed("--travel-speed", o.gcode.travel_speed, "Travel speed", program);
-  mm("--retract", o.gcode.retract_length, "Retraction before travel, mm of filament (0 = none)", program, true);
+  mm("--retract", o.gcode.retract_length, "Retraction before travel that leaves the part, mm of filament (0 = none)", program, true);
   speed("--retract-speed", o.gcode.retract_speed, "Retraction speed", program);
   app.add_option("--stl", o.stl, "Also write the same lithophane as a binary STL")->type_name("FILE")->group(program);
   const char* paint = "Texture (mode 2): gc-litho --texture IMAGE [FILE]";

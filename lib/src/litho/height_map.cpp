@@ -62,6 +62,19 @@ Point HeightMap::place(double s, double depth, double center_x, double center_y)
   return {center_x - length_ / 2 + s, center_y - options_.max_thickness / 2 + depth};
 }
 
+void HeightMap::locate(Point p, double center_x, double center_y, double& s, double& depth) const {
+  if (closed()) {
+    const double radius = base_radius();
+    double angle = std::atan2(p.y - center_y, p.x - center_x);
+    if (angle < 0) angle += 2 * std::numbers::pi;
+    s = std::min(angle * radius, std::nextafter(length_, 0.0));
+    depth = std::hypot(p.x - center_x, p.y - center_y) - radius;
+    return;
+  }
+  s = p.x - (center_x - length_ / 2);
+  depth = p.y - (center_y - options_.max_thickness / 2);
+}
+
 bool HeightMap::image_uv(double s, double z, double& u, double& v) const {
   const double b = options_.border;
   z = std::clamp(z, 0.0, height_);

@@ -7,6 +7,7 @@
 
 #include "gcode/core/line_builder.hpp"
 #include "gcode/core/number.hpp"
+#include "gcode/litho/path_order.hpp"
 #include "gcode/version.hpp"
 
 namespace gcode::litho {
@@ -103,19 +104,26 @@ class Emitter {
     if (!moves_xy && !moves_z) return;
     if (d > options_.retract_min_travel || moves_z) retract(true);
     if (moves_z && z > z_) move_z(z);
-    if (moves_xy) {
-      b_.start("G0");
-      feed(b_, options_.travel_speed);
-      b_.word('X', to.x, kXY).word('Y', to.y, kXY);
-      line(b_.view());
-      set_at(to);
-    }
+    if (moves_xy) travel_xy(to);
     if (moves_z && z < z_) move_z(z);
+  }
+
+  // A travel the planner routed inside the band (path_order.hpp), taken only
+  // from where it was routed from: over the part, so no retraction.
+  bool combed_travel(const Path& p, double z) {
+    if (!p.combed || to_scaled(p.from.x, kXY) != x_ || to_scaled(p.from.y, kXY) != y_) return false;
+    if (to_scaled(z, kXYZ) != to_scaled(z_, kXYZ)) {
+      if (z < z_) return false;
+      move_z(z);
+    }
+    for (const Point& via : p.approach) travel_xy(via);
+    travel_xy(p.start);
+    return true;
   }
 
   void path(const Path& p, double z) {
     if (p.pieces.empty()) return;
-    travel(p.start, z);
+    if (!combed_travel(p, z)) travel(p.start, z);
     retract(false);
     if (p.role != role_ || !typed_) {
       line(type_name(p.role));
@@ -138,6 +146,15 @@ class Emitter {
     at_ = at;
     x_ = to_scaled(at.x, kXY);
     y_ = to_scaled(at.y, kXY);
+  }
+
+  void travel_xy(Point to) {
+    if (to_scaled(to.x, kXY) == x_ && to_scaled(to.y, kXY) == y_) return;
+    b_.start("G0");
+    feed(b_, options_.travel_speed);
+    b_.word('X', to.x, kXY).word('Y', to.y, kXY);
+    line(b_.view());
+    set_at(to);
   }
 
   void move_z(double z) {
@@ -255,9 +272,10 @@ LithoGcodeStats write_litho_gcode(const LithophanePlanner& planner, const LithoG
   LithoGcodeStats stats;
   stats.layers = planner.layer_count();
   LithoLayer layer;
+  Point head;  // where each layer ends, for the next one's order (path_order.hpp)
   // First pass: totals for the header.
   for (int i = 0; i < planner.layer_count(); ++i) {
-    planner.plan_layer(i, layer);
+    plan_ordered_layer(planner, i, layer, head);
     stats.volume += layer.stats.volume;
     stats.pieces += layer.stats.pieces;
     stats.clamped_fast += layer.stats.clamped_fast;
@@ -321,7 +339,7 @@ LithoGcodeStats write_litho_gcode(const LithophanePlanner& planner, const LithoG
   emit(e.text());
 
   for (int i = 0; i < planner.layer_count(); ++i) {
-    planner.plan_layer(i, layer);
+    plan_ordered_layer(planner, i, layer, head);
     e.line(fmt::format(";LAYER:{}", i));
     if (i == 1 && options.fan > 0) e.line(fmt::format("M106 S{}", options.fan));
     e.new_layer();

@@ -80,6 +80,8 @@ class HeightMap {
   // lies max_thickness / 2 in front of the centre line (so the plate's
   // bounding box is centred), a cylinder's axis is on the centre.
   Point place(double s, double depth, double center_x, double center_y) const;
+  // The inverse of place: s (a cylinder's in [0, length)) and depth of a bed point.
+  void locate(Point p, double center_x, double center_y, double& s, double& depth) const;
   // Where (s, z) falls on the picture: u 0..1 left to right, v 0..1 top to
   // bottom; false in the border.
   bool image_uv(double s, double z, double& u, double& v) const;

@@ -96,6 +96,12 @@ struct Path {
   PathRole role = PathRole::Fill;
   Point start;
   std::vector<Piece> pieces;
+  // Set by order_layer (path_order.hpp): the travel from `from` to `start`
+  // goes through `approach` and stays inside the layer's band, so it needs
+  // no retraction. Unset: a plain travel.
+  bool combed = false;
+  Point from;
+  std::vector<Point> approach;
 };
 
 struct LayerStats {
