@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -175,49 +176,66 @@ void LithophanePlanner::add_cap(Point from, Point to, double rate, Path& path, L
   ++stats.pieces;
 }
 
-// Douglas-Peucker over the knots strictly between s0 and s1: a knot stays
-// where the chord of the thickness through the stretch's kept ends misses it
-// by more than the surface tolerance. `kept` gets the kept knots in order.
-void LithophanePlanner::keep_knots(double s0, double s1, double z, const std::vector<double>& knots,
-                                   std::vector<double>& kept) const {
-  kept.clear();
-  if (knots.empty()) return;
+// Douglas-Peucker over the candidate sample points (every resolution step
+// and every pixel centre, in order; the first and last are kept): a point
+// stays where the chord of the thickness through the kept points around it
+// misses it by more than the surface tolerance, where the stretch would be
+// longer than the longest piece, or where the pass count differs at the
+// stretch's ends (so that a stretch has one count of passes). `keep` marks them.
+void LithophanePlanner::keep_points(const std::vector<double>& cand, double z, std::vector<char>& keep) const {
+  const std::size_t n = cand.size();
+  keep.assign(n, 0);
+  if (n == 0) return;
+  keep.front() = keep.back() = 1;
   const double tol = options_.surface_tolerance;
-  // Ranges of knot indices [lo, hi) between two kept points (a, b), done depth first, left to right.
-  struct Range {
-    std::size_t lo, hi;
-    double a, ta, b, tb;
+  const double longest = longest_piece();
+  auto passes = [&](double s) {
+    const double g = column(s, z).gap;
+    return g > 0 ? static_cast<int>(std::ceil(g / options_.max_pass_width - 1e-9)) : 0;
   };
-  Range stack[64];
-  int top = 0;
-  stack[top++] = {0, knots.size(), s0, map_.thickness(s0, z), s1, map_.thickness(s1, z)};
-  while (top > 0) {
-    const Range r = stack[--top];
+  std::vector<std::size_t> stack{0, n - 1};
+  while (!stack.empty()) {
+    const std::size_t hi = stack.back();
+    stack.pop_back();
+    const std::size_t lo = stack.back();
+    stack.pop_back();
+    if (hi - lo < 2) continue;
+    const double a = cand[lo], b = cand[hi];
+    const double ta = map_.thickness(a, z), tb = map_.thickness(b, z);
     double worst = tol;
-    std::size_t at = r.hi;
-    double t_at = 0;
-    for (std::size_t i = r.lo; i < r.hi; ++i) {
-      // A knot within min piece of a kept point would make a sliver of a piece.
-      if (knots[i] - r.a < options_.min_piece || r.b - knots[i] < options_.min_piece) continue;
-      const double t = map_.thickness(knots[i], z);
-      const double chord = r.ta + (r.tb - r.ta) * (knots[i] - r.a) / (r.b - r.a);
-      if (std::abs(t - chord) > worst) {
-        worst = std::abs(t - chord);
+    std::size_t at = hi;
+    for (std::size_t i = lo + 1; i < hi; ++i) {
+      // A point within min piece of a kept one would make a sliver of a piece.
+      if (cand[i] - a < options_.min_piece || b - cand[i] < options_.min_piece) continue;
+      const double dev = std::abs(map_.thickness(cand[i], z) - (ta + (tb - ta) * (cand[i] - a) / (b - a)));
+      if (dev > worst) {
+        worst = dev;
         at = i;
-        t_at = t;
       }
     }
-    if (at == r.hi) continue;
-    if (top + 2 > 64) {  // deeper than any picture needs: keep the rest as they are
-      for (std::size_t i = r.lo; i < r.hi; ++i) kept.push_back(knots[i]);
-      continue;
+    if (at == hi && (b - a > longest || passes(a) != passes(b))) {
+      double best = std::numeric_limits<double>::infinity();  // the point nearest the middle
+      for (std::size_t i = lo + 1; i < hi; ++i) {
+        const double off = std::abs(cand[i] - (a + b) / 2);
+        if (cand[i] - a >= options_.min_piece && b - cand[i] >= options_.min_piece && off < best) {
+          best = off;
+          at = i;
+        }
+      }
     }
-    // Right half first on the stack, so the left half comes out first.
-    stack[top++] = {at + 1, r.hi, knots[at], t_at, r.b, r.tb};
-    stack[top++] = {r.lo, at, r.a, r.ta, knots[at], t_at};
-    kept.push_back(knots[at]);
+    if (at == hi) continue;
+    keep[at] = 1;
+    stack.insert(stack.end(), {lo, at, at, hi});
   }
-  std::sort(kept.begin(), kept.end());
+}
+
+// The longest piece: a flat plate's is long (straight runs merge anyway);
+// a cylinder's chords may cut inside the circle by at most 0.005 mm at the
+// thickest point, r (1 - cos(a / 2)) <= 0.005, as an arc on the base.
+double LithophanePlanner::longest_piece() const {
+  if (!map_.closed()) return 5.0;
+  const double r = map_.base_radius() + map_.max_thickness();
+  return 2 * std::acos(1 - 0.005 / r) * map_.base_radius();
 }
 
 // How many equal pieces a stretch between two columns needs. A bead has one
@@ -263,30 +281,35 @@ void LithophanePlanner::plan_layer(int index, LithoLayer& out) const {
   const int n = std::max(map_.closed() ? 16 : 1, static_cast<int>(std::ceil(span / options_.resolution - 1e-9)));
   s.reserve(static_cast<std::size_t>(n) * 2 + 1);
   cols.reserve(static_cast<std::size_t>(n) * 2 + 1);
-  std::vector<double> knots;
-  std::vector<double> kept;
+  // Candidates: every resolution step and the picture's knots between them;
+  // kept: those the surface, the longest piece or the pass count need.
+  std::vector<double> cand;
+  cand.reserve(static_cast<std::size_t>(n) * 2 + 1);
+  for (int k = 0; k < n; ++k) {
+    cand.push_back(first + span * k / n);
+    map_.knots(cand.back(), first + span * (k + 1) / n, cand);
+  }
+  cand.push_back(first + span);
+  std::vector<char> keep;
+  keep_points(cand, zs, keep);
   double s_prev = first;
   Column c_prev = column(first, zs);
-  for (int k = 0; k < n; ++k) {
-    const double s_next = first + span * (k + 1) / n;
-    // The picture's knots inside this step that its chord would miss (the
-    // corners of hard edges, thin lines between two samples), then each
-    // stretch cut so that no bead beside another leaves a gap.
-    knots.clear();
-    map_.knots(s_prev, s_next, knots);
-    keep_knots(s_prev, s_next, zs, knots, kept);
-    kept.push_back(s_next);
-    auto stretch = [&](double s_to, const Column& c_to, int cuts) {
+  for (std::size_t k = 1; k < cand.size(); ++k) {
+    if (!keep[k]) continue;
+    const double s_to = cand[k];
+    // Each stretch between kept points is cut so that no bead beside
+    // another leaves a gap; a pass that begins or ends gets its own piece.
+    auto stretch = [&](double end, const Column& c_end, int cuts) {
       s.push_back(s_prev);
       cols.push_back(c_prev);
       for (int j = 1; j < cuts; ++j) {
-        s.push_back(s_prev + (s_to - s_prev) * j / cuts);
+        s.push_back(s_prev + (end - s_prev) * j / cuts);
         cols.push_back(column(s.back(), zs));
       }
-      s_prev = s_to;
-      c_prev = c_to;
+      s_prev = end;
+      c_prev = c_end;
     };
-    for (const double s_to : kept) {
+    {
       const Column c_to = column(s_to, zs);
       if ((c_prev.gap > 0) != (c_to.gap > 0)) {
         // A pass begins or ends here: it starts at min pass width while the
@@ -305,9 +328,9 @@ void LithophanePlanner::plan_layer(int index, LithoLayer& out) const {
         if (a > s_prev) stretch(a, ca, cuts_between(c_prev, ca, a - s_prev));
         stretch(b, cb, 1);
         if (b < s_to) stretch(s_to, c_to, cuts_between(cb, c_to, s_to - b));
-        continue;
+      } else {
+        stretch(s_to, c_to, cuts_between(c_prev, c_to, s_to - s_prev));
       }
-      stretch(s_to, c_to, cuts_between(c_prev, c_to, s_to - s_prev));
     }
   }
   s.push_back(first + span);

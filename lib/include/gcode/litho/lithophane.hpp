@@ -16,12 +16,14 @@
 // [t - w, t] and the passes share [w, t - w] equally; all boundaries are
 // linear between sample points, so the pieces tile the band exactly and each
 // piece's volume is its strip's area x layer height.
-// Sample points: every `resolution` mm, plus the picture's own corners where
-// the chord would miss them. At a fixed height the thickness is linear
-// between pixel centres (HeightMap::knots); a centre whose thickness is more
-// than `surface_tolerance` off the chord through its neighbours is a sample
-// point too (Douglas-Peucker), so a hard edge or a one-pixel line is followed
-// corner to corner, and between sample points the strips are straight.
+// Sample points: candidates every `resolution` mm and at the picture's own
+// corners (at a fixed height the thickness is linear between pixel centres,
+// HeightMap::knots); kept are those the chord through the kept ones around
+// would miss by more than `surface_tolerance` (Douglas-Peucker), so a hard
+// edge or a one-pixel line is followed corner to corner while a straight
+// stretch of surface is one piece (at most 5 mm on a plate; round a cylinder
+// as long as the chord stays within 0.005 mm of the circle), and points
+// where the count of passes would change within a stretch.
 // A bead has one width per move, while the strip it fills widens or narrows
 // along the piece (linearly): at the piece's ends two neighbouring beads
 // then leave |change of one's depth + change of the other's| / 4 between
@@ -29,7 +31,7 @@
 // into the fewest equal pieces that keep this at most `edge_gap` (pieces no
 // shorter than `min_piece`); where a pass appears or ends (the walls stop
 // sharing the band) the switch gets a piece of its own, so the change on
-// either side of it is smooth. Away from edges pieces stay `resolution` long.
+// either side of it is smooth.
 // A piece's width at right angles to its path is area / length, so on a
 // slope a bead gets thinner and faster, and its extruder rate stays q.
 //   - q = line width x layer height x infill speed (what conventional infill
@@ -151,7 +153,8 @@ class LithophanePlanner {
     double s1, a1, b1;
   };
   Column column(double s, double z) const;
-  void keep_knots(double s0, double s1, double z, const std::vector<double>& knots, std::vector<double>& kept) const;
+  void keep_points(const std::vector<double>& cand, double z, std::vector<char>& keep) const;
+  double longest_piece() const;
   int cuts_between(const Column& c0, const Column& c1, double length) const;
   double clamp_speed(double speed, Piece& piece, LayerStats& stats) const;
   static void push_piece(Path& path, const Piece& piece);

@@ -12,10 +12,15 @@
 //     outer wall, cap; cylinder: each ring) nearest to the head, cutting a
 //     piece in two there, so a layer begins right above where the last one
 //     ended;
-//   - then takes the passes nearest first, each run in whichever direction
-//     starts nearer (a closed ring from its nearest point), which keeps the
-//     serpentine inside a group and steps into the neighbouring group where
-//     a run ends next to it;
+//   - then orders the passes for the least travel: seen along the base the
+//     runs are edges between the positions of their ends, and a walk through
+//     all of them from the head needs travel only to pair up the positions
+//     with an odd count of run ends (the head's counted once more) but one,
+//     where the walk ends; neighbours along the base are paired (cheapest on
+//     a line or circle), parts left apart are joined there and back, and the
+//     walk is an Euler path. Nearest first (from each of the eight nearest
+//     runs) and group by group along the base are tried as well; the least
+//     travel, estimated along the base, wins;
 //   - routes each travel inside the layer's band (a "combed" travel, as
 //     slicers do): straight where the straight line stays inside, else
 //     across to the middle of the band's thinnest part on the way, along it,
