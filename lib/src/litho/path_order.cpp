@@ -139,18 +139,6 @@ class Comber {
     way(from, path.start, path.approach);
   }
 
-  // Length of the travel from `from` to `to`.
-  double length(Point from, Point to) const {
-    way(from, to, scratch_);
-    double d = 0;
-    Point at = from;
-    for (const Point& p : scratch_) {
-      d += distance(at, p);
-      at = p;
-    }
-    return d + distance(at, to);
-  }
-
   // The waypoints between `from` and `to` (none: straight).
   void way(Point from, Point to, std::vector<Point>& out) const {
     out.clear();
@@ -239,7 +227,6 @@ class Comber {
   const HeightMap& map_;
   double z_;
   double cx_ = 0, cy_ = 0, step_ = 0.2;
-  mutable std::vector<Point> scratch_;
   mutable std::vector<double> knots_;
 };
 
