@@ -279,6 +279,13 @@ struct Ends {
   double s[2], d[2];  // start, end
 };
 
+// Several orders of the passes; the one with the least travel wins: an
+// Euler path (see euler()); nearest first, starting with each of the runs
+// nearest the head (either way round); and group by group along the base
+// (a group: the runs side by side over one stretch, as the planner makes
+// them), forward or backward (a cylinder's from the group nearest the head),
+// nearest first inside each group (a serpentine). Travel is estimated along
+// the base (around a cylinder, not across it), as the combed travel goes.
 class PassOrder {
  public:
   PassOrder(const LithophanePlanner& planner, const std::vector<Path>& fill, Point head)
@@ -600,13 +607,8 @@ void order_layer(const LithophanePlanner& planner, LithoLayer& layer, Point from
       layer.paths.push_back(std::move(p));
     }
   }
-  // Passes: several orders, the one with the least travel wins: nearest
-  // first, starting with each of the runs nearest the head (either way
-  // round); and group by group along the base (a group: the runs side by
-  // side over one stretch, as the planner makes them), forward or backward
-  // (a cylinder's from the group nearest the head), nearest first inside
-  // each group (a serpentine). Travel is estimated along the base (around
-  // a cylinder, not across it), as the combed travel goes.
+  // Passes: the order with the least travel of those PassOrder tries (an
+  // Euler path, nearest first, group by group).
   const std::vector<Step> best_steps = order_passes(planner, fill, cur);
   for (const Step& st : best_steps) {
     Path& p = fill[st.index];
