@@ -255,7 +255,7 @@ int LithophanePlanner::cuts_between(const Column& c0, const Column& c1, double l
     worst = std::max(std::abs(dwall + dpass), passes > 1 ? std::abs(2 * dpass) : 0.0);
   }
   const double needed = std::ceil(worst / (4 * options_.edge_gap) - 1e-9);
-  const double most = std::max(1.0, std::floor(length / options_.min_piece));
+  const double most = std::max(1.0, std::ceil(length / options_.min_piece - 1e-9));  // pieces of at least half a min piece
   return static_cast<int>(std::clamp(needed, 1.0, most));
 }
 
@@ -292,48 +292,68 @@ void LithophanePlanner::plan_layer(int index, LithoLayer& out) const {
   cand.push_back(first + span);
   std::vector<char> keep;
   keep_points(cand, zs, keep);
-  double s_prev = first;
-  Column c_prev = column(first, zs);
+  // A flat plate's sample points sit on the 0.0001 mm grid of the written X
+  // (X = the plate's left end + s), so every piece's extent along the plate
+  // is exactly what was planned, however short the piece.
+  const double x0 = point_at(0, 0).x;
+  auto snap = [&](double v) { return map_.closed() ? v : std::round((x0 + v) * 1e4) / 1e4 - x0; };
+  double s_prev = snap(first);
+  Column c_prev = column(s_prev, zs);
   for (std::size_t k = 1; k < cand.size(); ++k) {
     if (!keep[k]) continue;
-    const double s_to = cand[k];
+    const double s_to = snap(cand[k]);
+    if (!(s_to > s_prev)) continue;
     // Each stretch between kept points is cut so that no bead beside
     // another leaves a gap; a pass that begins or ends gets its own piece.
     auto stretch = [&](double end, const Column& c_end, int cuts) {
       s.push_back(s_prev);
       cols.push_back(c_prev);
       for (int j = 1; j < cuts; ++j) {
-        s.push_back(s_prev + (end - s_prev) * j / cuts);
-        cols.push_back(column(s.back(), zs));
+        const double at = snap(s_prev + (end - s_prev) * j / cuts);
+        if (!(at > s.back() && at < end)) continue;
+        s.push_back(at);
+        cols.push_back(column(at, zs));
       }
       s_prev = end;
       c_prev = c_end;
     };
-    {
-      const Column c_to = column(s_to, zs);
-      if ((c_prev.gap > 0) != (c_to.gap > 0)) {
-        // A pass begins or ends here: it starts at min pass width while the
-        // walls step from sharing the band to one line width each. That step
-        // gets a piece of its own, min piece long, so the beads on either
-        // side of it change smoothly and cutting can close their gaps.
-        double a = s_prev, b = s_to;  // a on s_prev's side of the switch, b on s_to's
-        while (b - a > 2 * options_.min_piece) {
-          const double mid = (a + b) / 2;
-          ((column(mid, zs).gap > 0) == (c_prev.gap > 0) ? a : b) = mid;
-        }
-        if (a - s_prev < options_.min_piece) a = s_prev;  // no sliver of a piece on either side
-        if (s_to - b < options_.min_piece) b = s_to;
-        const Column ca = column(a, zs);
-        const Column cb = column(b, zs);
-        if (a > s_prev) stretch(a, ca, cuts_between(c_prev, ca, a - s_prev));
-        stretch(b, cb, 1);
-        if (b < s_to) stretch(s_to, c_to, cuts_between(cb, c_to, s_to - b));
-      } else {
-        stretch(s_to, c_to, cuts_between(c_prev, c_to, s_to - s_prev));
+    const Column c_to = column(s_to, zs);
+    if ((c_prev.gap > 0) != (c_to.gap > 0)) {
+      // A pass begins or ends here: it starts at min pass width while the
+      // walls step from sharing the band to one line width each. That step
+      // gets a piece of its own, so the beads on either side of it change
+      // smoothly and cutting can close their gaps. Across the step the walls
+      // change by min pass / 2 and the pass by min pass, plus the thickness's
+      // slope x the piece's length: the piece is short enough to keep
+      // neighbours within the edge gap (down to 0.001 mm), else min piece.
+      const double slope = std::abs(c_to.t - c_prev.t) / (s_to - s_prev);
+      const double room = 4 * options_.edge_gap - options_.min_pass_width / 2;
+      const double jump =
+          room > 0 && slope > 0 ? std::clamp(room / slope, 0.001, 2 * options_.min_piece) : 2 * options_.min_piece;
+      double a = s_prev, b = s_to;  // a on s_prev's side of the switch, b on s_to's
+      while (b - a > jump) {
+        const double mid = (a + b) / 2;
+        ((column(mid, zs).gap > 0) == (c_prev.gap > 0) ? a : b) = mid;
       }
+      // On the grid, each still on its side of the switch.
+      const double unit = map_.closed() ? 0.0 : 1e-4;
+      a = snap(a);
+      while (a > s_prev && (column(a, zs).gap > 0) != (c_prev.gap > 0)) a = std::max(s_prev, a - unit);
+      b = snap(b);
+      while (b < s_to && (column(b, zs).gap > 0) != (c_to.gap > 0)) b = std::min(s_to, b + unit);
+      // No sliver of a piece on either side where the step's piece may take it in.
+      if (a - s_prev < options_.min_piece && b - s_prev <= jump) a = s_prev;
+      if (s_to - b < options_.min_piece && s_to - a <= jump) b = s_to;
+      const Column ca = column(a, zs);
+      const Column cb = column(b, zs);
+      if (a > s_prev) stretch(a, ca, cuts_between(c_prev, ca, a - s_prev));
+      stretch(b, cb, 1);
+      if (b < s_to) stretch(s_to, c_to, cuts_between(cb, c_to, s_to - b));
+    } else {
+      stretch(s_to, c_to, cuts_between(c_prev, c_to, s_to - s_prev));
     }
   }
-  s.push_back(first + span);
+  s.push_back(s_prev);
   cols.push_back(c_prev);
   if (map_.closed()) cols.back() = cols.front();  // the same column, not a second sample of it
 

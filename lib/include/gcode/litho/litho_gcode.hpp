@@ -13,9 +13,9 @@
 // ";FLAVOR:Marlin", ";LAYER_COUNT:n", ";LAYER:n" (0-based, before the layer's
 // first move), ";TYPE:WALL-OUTER" / "WALL-INNER" / "FILL", then a header that
 // lists every parameter. Numbers go through number.hpp (X/Y 4 decimals, Z 3,
-// E 7, F 0): on hard edges pieces are cut down to 0.005 mm along the base,
-// where 3 decimals of X/Y would put a bead's extent across the band off by
-// up to 20 % and 6 of E a narrow piece's rate off by 1 %. Start and end code
+// E 7, F 0): on hard edges pieces are cut down to a few micrometres along
+// the base, where 3 decimals of X/Y would put a bead's extent across the
+// band off by 20 % and more, and 6 of E a narrow piece's rate off by 1 %. Start and end code
 // are built-in Marlin defaults (heat with
 // M190/M109, home, a purge line in front of the part; retract, lift, heaters
 // and fan off, motors off) unless the caller passes its own text.

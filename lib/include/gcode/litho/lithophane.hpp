@@ -29,9 +29,11 @@
 // then leave |change of one's depth + change of the other's| / 4 between
 // them, measured across the band. Each stretch between sample points is cut
 // into the fewest equal pieces that keep this at most `edge_gap` (pieces no
-// shorter than `min_piece`); where a pass appears or ends (the walls stop
-// sharing the band) the switch gets a piece of its own, so the change on
-// either side of it is smooth.
+// shorter than half of `min_piece`); where a pass appears or ends (the walls
+// stop sharing the band) the switch gets a piece of its own, short enough
+// for the thickness's slope (down to 0.001 mm), so the change on either side
+// of it is smooth. A flat plate's sample points lie on the written X's
+// 0.0001 mm grid, so even the shortest piece's extent is written exactly.
 // A piece's width at right angles to its path is area / length, so on a
 // slope a bead gets thinner and faster, and its extruder rate stays q.
 //   - q = line width x layer height x infill speed (what conventional infill
