@@ -242,7 +242,7 @@ double LithophanePlanner::longest_piece() const {
 // width per piece while its strip's depth changes linearly along it, so at
 // a piece's ends two neighbouring beads leave |change of one + change of the
 // other| / 4 between them (measured across the band); cut until that is at
-// most the edge gap everywhere, but no piece shorter than min piece.
+// most the edge gap everywhere, but no piece shorter than half a min piece.
 int LithophanePlanner::cuts_between(const Column& c0, const Column& c1, double length) const {
   const double dwall = c1.wall - c0.wall;
   double worst = 0;
@@ -286,9 +286,15 @@ void LithophanePlanner::plan_layer(int index, LithoLayer& out) const {
   std::vector<double> cand;
   cand.reserve(static_cast<std::size_t>(n) * 2 + 1);
   for (int k = 0; k < n; ++k) {
-    cand.push_back(first + span * k / n);
-    map_.knots(cand.back(), first + span * (k + 1) / n, cand);
+    const double grid = first + span * k / n;
+    const std::size_t at = cand.size();
+    map_.knots(grid, first + span * (k + 1) / n, cand);
+    // A step's point that close to a knot gives way to the knot (the corner).
+    const bool near_knot = (at < cand.size() && cand[at] - grid < options_.min_piece) ||
+                           (at > 0 && k > 0 && grid - cand[at - 1] < options_.min_piece);
+    if (k == 0 || !near_knot) cand.insert(cand.begin() + static_cast<std::ptrdiff_t>(at), grid);
   }
+  if (first + span - cand.back() < options_.min_piece && cand.size() > 1) cand.pop_back();
   cand.push_back(first + span);
   std::vector<char> keep;
   keep_points(cand, zs, keep);
