@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -122,4 +123,47 @@ TEST_CASE("litho height map: impossible height map options fail with the option 
   o.width = 0;
   CHECK_THROWS_WITH(HeightMap(littest::gradient(4, 4), o), Catch::Contains("--width or --height"));
   CHECK_THROWS_AS(HeightMap(gcode::litho::GreyImage{}, HeightMapOptions{}), std::invalid_argument);
+}
+
+TEST_CASE("litho height map: knots are the pixel centres and the thickness is linear between them", "[litho][height_map]") {
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> luma(0, 255);
+  std::vector<std::uint8_t> px(12 * 4);
+  for (auto& p : px) p = static_cast<std::uint8_t>(luma(rng));
+  for (LithoShape shape : {LithoShape::Flat, LithoShape::Cylinder}) {
+    HeightMapOptions o;
+    o.shape = shape;
+    o.width = 30;
+    o.diameter = 10;
+    o.border = shape == LithoShape::Flat ? 2 : 0;
+    const HeightMap map(gcode::litho::GreyImage(12, 4, px), o);
+    const double z = map.height() / 2;
+    std::vector<double> k;
+    map.knots(0, map.length(), k);
+    // Flat: the border's two edges and the 12 pixel centres; a cylinder's 12 centres.
+    REQUIRE(k.size() == (shape == LithoShape::Flat ? 14u : 12u));
+    const double b = o.border;
+    const double pixel = (map.length() - 2 * b) / 12;
+    for (int i = 0; i < 12; ++i) CHECK(k[static_cast<std::size_t>(i) + (b > 0)] == Approx(b + (i + 0.5) * pixel));
+    CHECK(std::is_sorted(k.begin(), k.end()));
+    // Between two knots, the thickness at any point is on their chord.
+    for (std::size_t i = 0; i + 1 < k.size(); ++i) {
+      const double a = k[i] + 1e-9, c = k[i + 1] - 1e-9;
+      for (double f : {0.25, 0.5, 0.8}) {
+        const double s = a + (c - a) * f;
+        CHECK(map.thickness(s, z) ==
+              Approx(map.thickness(a, z) + (map.thickness(c, z) - map.thickness(a, z)) * f).margin(1e-6));
+      }
+    }
+    // Only the knots strictly inside the range; a cylinder's repeat past one turn.
+    std::vector<double> part;
+    map.knots(k[2], k[5], part);
+    CHECK(part.size() == 2);
+    if (map.closed()) {
+      part.clear();
+      map.knots(map.length() - pixel, map.length() + pixel, part);
+      REQUIRE(part.size() == 2);
+      CHECK(part[1] == Approx(map.length() + pixel / 2));
+    }
+  }
 }

@@ -225,3 +225,31 @@ TEST_CASE("litho planner: impossible lithophane options fail with the option nam
   LithoLayer layer;
   CHECK_THROWS_AS(ok.plan_layer(ok.layer_count(), layer), std::out_of_range);
 }
+
+TEST_CASE("litho planner: a one-pixel line between two samples is followed to its full thickness", "[litho][lithophane]") {
+  // 200 pixels over 20 mm (0.1 mm each), white but for one black column:
+  // its centre falls between two of the 0.2 mm samples, so only the
+  // picture's own corners (its knots) can put the outer wall on top of it.
+  std::vector<std::uint8_t> px(200 * 10, 255);
+  for (int y = 0; y < 10; ++y) px[static_cast<std::size_t>(y * 200 + 101)] = 0;
+  const HeightMap map(GreyImage(200, 10, std::move(px)), plate(20));
+  const LithophanePlanner planner(map, LithoOptions{});
+  LithoLayer layer;
+  planner.plan_layer(planner.layer_count() / 2, layer);
+  const double base_y = planner.point_at(0, 0).y;
+  const double lw = planner.options().line_width;
+  double deepest = 0;
+  std::size_t fill_pieces = 0;
+  for (const auto& path : layer.paths) {
+    if (path.role == PathRole::Fill) fill_pieces += path.pieces.size();
+    if (path.role != PathRole::WallOuter) continue;
+    for (const auto& piece : path.pieces) deepest = std::max(deepest, piece.to.y - base_y);
+  }
+  CHECK(deepest == Approx(3.0 - lw / 2).margin(1e-9));
+  // The pass lives only on the line's two slopes (2.2 mm up and down within
+  // 0.1 mm each), cut there into pieces: at least 2.2 / (4 x edge gap) of
+  // them per slope, and none elsewhere.
+  const double slope_pieces = 2.2 / (4 * planner.options().edge_gap);
+  CHECK(fill_pieces >= static_cast<std::size_t>(slope_pieces));
+  CHECK(fill_pieces <= static_cast<std::size_t>(4 * slope_pieces));
+}

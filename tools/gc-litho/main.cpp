@@ -166,7 +166,7 @@ int main(int argc, char** argv) {
   const char* both = "Both modes";
   mm("--width", o.map.width, "Picture width (mode 1 default 100; cylinder: from --diameter; mode 2: once around for cylinder)", both, true);
   mm("--height", o.map.height, "Picture height (default: from the width and the picture's aspect)", both, true);
-  mm("--resolution", o.plan.resolution, "Pieces (and STL grid) every MM along the path", both);
+  mm("--resolution", o.plan.resolution, "Mode 1: sampling step along the path (pieces longer where straight; STL grid); mode 2: piece length", both);
   app.add_option("--center", o.center_text, "Where it stands on the bed (mode 2 sphere: X,Y,Z)")->type_name("X,Y")->group(both);
   const char* path = "Lithophane (mode 1): the paths";
   mm("--layer-height", o.plan.layer_height, "Layer height", path);
@@ -187,7 +187,7 @@ int main(int argc, char** argv) {
   app.add_option("--start", o.start, "Start G-code from FILE instead of the built-in Marlin start")->type_name("FILE")->group(program);
   app.add_option("--end", o.end, "End G-code from FILE instead of the built-in one")->type_name("FILE")->group(program);
   speed("--travel-speed", o.gcode.travel_speed, "Travel speed", program);
-  mm("--retract", o.gcode.retract_length, "Retraction before travel, mm of filament (0 = none)", program, true);
+  mm("--retract", o.gcode.retract_length, "Retraction before travel that leaves the part, mm of filament (0 = none)", program, true);
   speed("--retract-speed", o.gcode.retract_speed, "Retraction speed", program);
   app.add_option("--stl", o.stl, "Also write the same lithophane as a binary STL")->type_name("FILE")->group(program);
   const char* paint = "Texture (mode 2): gc-litho --texture IMAGE [FILE]";

@@ -62,6 +62,19 @@ Point HeightMap::place(double s, double depth, double center_x, double center_y)
   return {center_x - length_ / 2 + s, center_y - options_.max_thickness / 2 + depth};
 }
 
+void HeightMap::locate(Point p, double center_x, double center_y, double& s, double& depth) const {
+  if (closed()) {
+    const double radius = base_radius();
+    double angle = std::atan2(p.y - center_y, p.x - center_x);
+    if (angle < 0) angle += 2 * std::numbers::pi;
+    s = std::min(angle * radius, std::nextafter(length_, 0.0));
+    depth = std::hypot(p.x - center_x, p.y - center_y) - radius;
+    return;
+  }
+  s = p.x - (center_x - length_ / 2);
+  depth = p.y - (center_y - options_.max_thickness / 2);
+}
+
 bool HeightMap::image_uv(double s, double z, double& u, double& v) const {
   const double b = options_.border;
   z = std::clamp(z, 0.0, height_);
@@ -107,6 +120,25 @@ double HeightMap::fraction(double s, double z) const {
   const double top = tone_(image_.at(x0, y0)) * (1 - fx) + tone_(image_.at(x1, y0)) * fx;
   const double bottom = tone_(image_.at(x0, y1)) * (1 - fx) + tone_(image_.at(x1, y1)) * fx;
   return top * (1 - fy) + bottom * fy;
+}
+
+void HeightMap::knots(double s0, double s1, std::vector<double>& out) const {
+  const double b = closed() ? 0.0 : options_.border;
+  const double picture = length_ - 2 * b;  // s span of the picture
+  const double pixel = picture / image_.width();
+  auto add = [&](double k) {
+    if (k > s0 && k < s1) out.push_back(k);
+  };
+  if (!closed() && b > 0) add(b);
+  // Pixel centre i sits at b + (i + 0.5) x pixel (a cylinder's repeat every turn).
+  const double first = std::ceil((s0 - b) / pixel - 0.5);
+  for (double i = std::max(first, closed() ? first : 0.0); ; ++i) {
+    if (!closed() && i >= image_.width()) break;
+    const double k = b + (i + 0.5) * pixel;
+    if (k >= s1) break;
+    add(k);
+  }
+  if (!closed() && b > 0) add(length_ - b);
 }
 
 double HeightMap::thickness(double s, double z) const {

@@ -7,14 +7,17 @@
 
 #include "gcode/core/line_builder.hpp"
 #include "gcode/core/number.hpp"
+#include "gcode/litho/path_order.hpp"
 #include "gcode/version.hpp"
 
 namespace gcode::litho {
 
 namespace {
 
-constexpr int kXYZ = 3;
-constexpr int kE = 6;
+constexpr int kXY = 4;   // X and Y: pieces on steep edges are a few micrometres along the base
+constexpr double kXYUnit = 1e-4;
+constexpr int kXYZ = 3;  // Z
+constexpr int kE = 7;
 
 std::string num(double v, int decimals = 3) {
   char b[kMaxNumberChars];
@@ -63,16 +66,16 @@ class Emitter {
   // the written F, are what the planner asked for. A piece that rounds to no
   // length at all is not written; its plastic goes to the next piece.
   void extrude_to(const Piece& piece) {
-    const std::int64_t x = to_scaled(piece.to.x, kXYZ);
-    const std::int64_t y = to_scaled(piece.to.y, kXYZ);
+    const std::int64_t x = to_scaled(piece.to.x, kXY);
+    const std::int64_t y = to_scaled(piece.to.y, kXY);
     if (x == x_ && y == y_) {
       pending_volume_ += piece.volume;
       return;
     }
-    const double length = std::hypot(static_cast<double>(x - x_), static_cast<double>(y - y_)) / 1000;
+    const double length = std::hypot(static_cast<double>(x - x_), static_cast<double>(y - y_)) * kXYUnit;
     b_.start("G1");
     feed(b_, piece.speed);
-    b_.word('X', piece.to.x, kXYZ).word('Y', piece.to.y, kXYZ);
+    b_.word('X', piece.to.x, kXY).word('Y', piece.to.y, kXY);
     e_exact_ += (piece.width * layer_height_ * length + pending_volume_) / filament_area_;
     pending_volume_ = 0;
     const std::int64_t total = to_scaled(e_exact_, kE);
@@ -96,24 +99,31 @@ class Emitter {
   // Travel to `to` at height `z` (Z first when going up, last when going down).
   void travel(Point to, double z) {
     const double d = std::hypot(to.x - at_.x, to.y - at_.y);
-    const bool moves_xy = to_scaled(to.x, kXYZ) != x_ || to_scaled(to.y, kXYZ) != y_;
+    const bool moves_xy = to_scaled(to.x, kXY) != x_ || to_scaled(to.y, kXY) != y_;
     const bool moves_z = to_scaled(z, kXYZ) != to_scaled(z_, kXYZ);
     if (!moves_xy && !moves_z) return;
     if (d > options_.retract_min_travel || moves_z) retract(true);
     if (moves_z && z > z_) move_z(z);
-    if (moves_xy) {
-      b_.start("G0");
-      feed(b_, options_.travel_speed);
-      b_.word('X', to.x, kXYZ).word('Y', to.y, kXYZ);
-      line(b_.view());
-      set_at(to);
-    }
+    if (moves_xy) travel_xy(to);
     if (moves_z && z < z_) move_z(z);
+  }
+
+  // A travel the planner routed inside the band (path_order.hpp), taken only
+  // from where it was routed from: over the part, so no retraction.
+  bool combed_travel(const Path& p, double z) {
+    if (!p.combed || to_scaled(p.from.x, kXY) != x_ || to_scaled(p.from.y, kXY) != y_) return false;
+    if (to_scaled(z, kXYZ) != to_scaled(z_, kXYZ)) {
+      if (z < z_) return false;
+      move_z(z);
+    }
+    for (const Point& via : p.approach) travel_xy(via);
+    travel_xy(p.start);
+    return true;
   }
 
   void path(const Path& p, double z) {
     if (p.pieces.empty()) return;
-    travel(p.start, z);
+    if (!combed_travel(p, z)) travel(p.start, z);
     retract(false);
     if (p.role != role_ || !typed_) {
       line(type_name(p.role));
@@ -134,8 +144,17 @@ class Emitter {
  private:
   void set_at(Point at) {
     at_ = at;
-    x_ = to_scaled(at.x, kXYZ);
-    y_ = to_scaled(at.y, kXYZ);
+    x_ = to_scaled(at.x, kXY);
+    y_ = to_scaled(at.y, kXY);
+  }
+
+  void travel_xy(Point to) {
+    if (to_scaled(to.x, kXY) == x_ && to_scaled(to.y, kXY) == y_) return;
+    b_.start("G0");
+    feed(b_, options_.travel_speed);
+    b_.word('X', to.x, kXY).word('Y', to.y, kXY);
+    line(b_.view());
+    set_at(to);
   }
 
   void move_z(double z) {
@@ -253,9 +272,10 @@ LithoGcodeStats write_litho_gcode(const LithophanePlanner& planner, const LithoG
   LithoGcodeStats stats;
   stats.layers = planner.layer_count();
   LithoLayer layer;
+  Point head;  // where each layer ends, for the next one's order (path_order.hpp)
   // First pass: totals for the header.
   for (int i = 0; i < planner.layer_count(); ++i) {
-    planner.plan_layer(i, layer);
+    plan_ordered_layer(planner, i, layer, head);
     stats.volume += layer.stats.volume;
     stats.pieces += layer.stats.pieces;
     stats.clamped_fast += layer.stats.clamped_fast;
@@ -319,7 +339,7 @@ LithoGcodeStats write_litho_gcode(const LithophanePlanner& planner, const LithoG
   emit(e.text());
 
   for (int i = 0; i < planner.layer_count(); ++i) {
-    planner.plan_layer(i, layer);
+    plan_ordered_layer(planner, i, layer, head);
     e.line(fmt::format(";LAYER:{}", i));
     if (i == 1 && options.fan > 0) e.line(fmt::format("M106 S{}", options.fan));
     e.new_layer();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -45,7 +46,8 @@ void LithoOptions::validate(const HeightMapOptions& map) const {
   require_positive(r.max_pass_width, "--max-pass-width");
   require_positive(r.min_pass_width, "--min-pass-width");
   require_positive(r.resolution, "--resolution");
-  require_positive(r.max_step, "the thickness step per piece");
+  require_positive(r.edge_gap, "the gap left beside a bead");
+  require_positive(r.surface_tolerance, "the surface tolerance");
   require_positive(r.min_piece, "the shortest piece");
   if (!(r.first_layer_factor > 0 && r.first_layer_factor <= 1))
     throw std::invalid_argument("the first-layer speed factor must be above 0 and at most 1");
@@ -174,6 +176,89 @@ void LithophanePlanner::add_cap(Point from, Point to, double rate, Path& path, L
   ++stats.pieces;
 }
 
+// Douglas-Peucker over the candidate sample points (every resolution step
+// and every pixel centre, in order; the first and last are kept): a point
+// stays where the chord of the thickness through the kept points around it
+// misses it by more than the surface tolerance, where the stretch would be
+// longer than the longest piece, or where the pass count differs at the
+// stretch's ends (so that a stretch has one count of passes). `keep` marks them.
+void LithophanePlanner::keep_points(const std::vector<double>& cand, double z, std::vector<char>& keep) const {
+  const std::size_t n = cand.size();
+  keep.assign(n, 0);
+  if (n == 0) return;
+  keep.front() = keep.back() = 1;
+  const double tol = options_.surface_tolerance;
+  const double longest = longest_piece();
+  auto passes = [&](double s) {
+    const double g = column(s, z).gap;
+    return g > 0 ? static_cast<int>(std::ceil(g / options_.max_pass_width - 1e-9)) : 0;
+  };
+  std::vector<std::size_t> stack{0, n - 1};
+  while (!stack.empty()) {
+    const std::size_t hi = stack.back();
+    stack.pop_back();
+    const std::size_t lo = stack.back();
+    stack.pop_back();
+    if (hi - lo < 2) continue;
+    const double a = cand[lo], b = cand[hi];
+    const double ta = map_.thickness(a, z), tb = map_.thickness(b, z);
+    double worst = tol;
+    std::size_t at = hi;
+    for (std::size_t i = lo + 1; i < hi; ++i) {
+      // A point within min piece of a kept one would make a sliver of a piece.
+      if (cand[i] - a < options_.min_piece || b - cand[i] < options_.min_piece) continue;
+      const double dev = std::abs(map_.thickness(cand[i], z) - (ta + (tb - ta) * (cand[i] - a) / (b - a)));
+      if (dev > worst) {
+        worst = dev;
+        at = i;
+      }
+    }
+    if (at == hi && (b - a > longest || passes(a) != passes(b))) {
+      double best = std::numeric_limits<double>::infinity();  // the point nearest the middle
+      for (std::size_t i = lo + 1; i < hi; ++i) {
+        const double off = std::abs(cand[i] - (a + b) / 2);
+        if (cand[i] - a >= options_.min_piece && b - cand[i] >= options_.min_piece && off < best) {
+          best = off;
+          at = i;
+        }
+      }
+    }
+    if (at == hi) continue;
+    keep[at] = 1;
+    stack.insert(stack.end(), {lo, at, at, hi});
+  }
+}
+
+// The longest piece: a flat plate's is long (straight runs merge anyway);
+// a cylinder's chords may cut inside the circle by at most 0.005 mm at the
+// thickest point, r (1 - cos(a / 2)) <= 0.005, as an arc on the base.
+double LithophanePlanner::longest_piece() const {
+  if (!map_.closed()) return 5.0;
+  const double r = map_.base_radius() + map_.max_thickness();
+  return 2 * std::acos(1 - 0.005 / r) * map_.base_radius();
+}
+
+// How many equal pieces a stretch between two columns needs. A bead has one
+// width per piece while its strip's depth changes linearly along it, so at
+// a piece's ends two neighbouring beads leave |change of one + change of the
+// other| / 4 between them (measured across the band); cut until that is at
+// most the edge gap everywhere, but no piece shorter than half a min piece.
+int LithophanePlanner::cuts_between(const Column& c0, const Column& c1, double length) const {
+  const double dwall = c1.wall - c0.wall;
+  double worst = 0;
+  if (c0.gap == 0 && c1.gap == 0) {
+    worst = std::abs(2 * dwall);  // the two walls meet
+  } else {
+    const double g = std::min(c0.gap, c1.gap);
+    const int passes = std::max(1, static_cast<int>(std::ceil(g / options_.max_pass_width - 1e-9)));
+    const double dpass = (c1.gap - c0.gap) / passes;
+    worst = std::max(std::abs(dwall + dpass), passes > 1 ? std::abs(2 * dpass) : 0.0);
+  }
+  const double needed = std::ceil(worst / (4 * options_.edge_gap) - 1e-9);
+  const double most = std::max(1.0, std::ceil(length / options_.min_piece - 1e-9));  // pieces of at least half a min piece
+  return static_cast<int>(std::clamp(needed, 1.0, most));
+}
+
 void LithophanePlanner::plan_layer(int index, LithoLayer& out) const {
   if (index < 0 || index >= layers_) throw std::out_of_range("LithophanePlanner::plan_layer: no such layer");
   out.index = index;
@@ -194,25 +279,88 @@ void LithophanePlanner::plan_layer(int index, LithoLayer& out) const {
   const double first = map_.closed() ? 0.0 : lw;
   const double span = map_.closed() ? length : length - 2 * lw;
   const int n = std::max(map_.closed() ? 16 : 1, static_cast<int>(std::ceil(span / options_.resolution - 1e-9)));
-  s.reserve(static_cast<std::size_t>(n) + 1);
-  cols.reserve(static_cast<std::size_t>(n) + 1);
-  const double step = span / n;
-  const int most_cuts = std::max(1, static_cast<int>(step / options_.min_piece));
-  Column next = column(first, zs);
+  s.reserve(static_cast<std::size_t>(n) * 2 + 1);
+  cols.reserve(static_cast<std::size_t>(n) * 2 + 1);
+  // Candidates: every resolution step and the picture's knots between them;
+  // kept: those the surface, the longest piece or the pass count need.
+  std::vector<double> cand;
+  cand.reserve(static_cast<std::size_t>(n) * 2 + 1);
   for (int k = 0; k < n; ++k) {
-    const double s0 = first + span * k / n;
-    const Column c0 = next;
-    next = column(first + span * (k + 1) / n, zs);
-    s.push_back(s0);
-    cols.push_back(c0);
-    const int cuts = std::min(most_cuts, static_cast<int>(std::ceil(std::abs(next.t - c0.t) / options_.max_step)));
-    for (int j = 1; j < cuts; ++j) {
-      s.push_back(s0 + step * j / cuts);
-      cols.push_back(column(s.back(), zs));
+    const double grid = first + span * k / n;
+    const std::size_t at = cand.size();
+    map_.knots(grid, first + span * (k + 1) / n, cand);
+    // A step's point that close to a knot gives way to the knot (the corner).
+    const bool near_knot = (at < cand.size() && cand[at] - grid < options_.min_piece) ||
+                           (at > 0 && k > 0 && grid - cand[at - 1] < options_.min_piece);
+    if (k == 0 || !near_knot) cand.insert(cand.begin() + static_cast<std::ptrdiff_t>(at), grid);
+  }
+  if (first + span - cand.back() < options_.min_piece && cand.size() > 1) cand.pop_back();
+  cand.push_back(first + span);
+  std::vector<char> keep;
+  keep_points(cand, zs, keep);
+  // A flat plate's sample points sit on the 0.0001 mm grid of the written X
+  // (X = the plate's left end + s), so every piece's extent along the plate
+  // is exactly what was planned, however short the piece.
+  const double x0 = point_at(0, 0).x;
+  auto snap = [&](double v) { return map_.closed() ? v : std::round((x0 + v) * 1e4) / 1e4 - x0; };
+  double s_prev = snap(first);
+  Column c_prev = column(s_prev, zs);
+  for (std::size_t k = 1; k < cand.size(); ++k) {
+    if (!keep[k]) continue;
+    const double s_to = snap(cand[k]);
+    if (!(s_to > s_prev)) continue;
+    // Each stretch between kept points is cut so that no bead beside
+    // another leaves a gap; a pass that begins or ends gets its own piece.
+    auto stretch = [&](double end, const Column& c_end, int cuts) {
+      s.push_back(s_prev);
+      cols.push_back(c_prev);
+      for (int j = 1; j < cuts; ++j) {
+        const double at = snap(s_prev + (end - s_prev) * j / cuts);
+        if (!(at > s.back() && at < end)) continue;
+        s.push_back(at);
+        cols.push_back(column(at, zs));
+      }
+      s_prev = end;
+      c_prev = c_end;
+    };
+    const Column c_to = column(s_to, zs);
+    if ((c_prev.gap > 0) != (c_to.gap > 0)) {
+      // A pass begins or ends here: it starts at min pass width while the
+      // walls step from sharing the band to one line width each. That step
+      // gets a piece of its own, so the beads on either side of it change
+      // smoothly and cutting can close their gaps. Across the step the walls
+      // change by min pass / 2 and the pass by min pass, plus the thickness's
+      // slope x the piece's length: the piece is short enough to keep
+      // neighbours within the edge gap (down to 0.001 mm), else min piece.
+      const double slope = std::abs(c_to.t - c_prev.t) / (s_to - s_prev);
+      const double room = 4 * options_.edge_gap - options_.min_pass_width / 2;
+      const double jump =
+          room > 0 && slope > 0 ? std::clamp(room / slope, 0.001, 2 * options_.min_piece) : 2 * options_.min_piece;
+      double a = s_prev, b = s_to;  // a on s_prev's side of the switch, b on s_to's
+      while (b - a > jump) {
+        const double mid = (a + b) / 2;
+        ((column(mid, zs).gap > 0) == (c_prev.gap > 0) ? a : b) = mid;
+      }
+      // On the grid, each still on its side of the switch.
+      const double unit = map_.closed() ? 0.0 : 1e-4;
+      a = snap(a);
+      while (a > s_prev && (column(a, zs).gap > 0) != (c_prev.gap > 0)) a = std::max(s_prev, a - unit);
+      b = snap(b);
+      while (b < s_to && (column(b, zs).gap > 0) != (c_to.gap > 0)) b = std::min(s_to, b + unit);
+      // No sliver of a piece on either side where the step's piece may take it in.
+      if (a - s_prev < options_.min_piece && b - s_prev <= jump) a = s_prev;
+      if (s_to - b < options_.min_piece && s_to - a <= jump) b = s_to;
+      const Column ca = column(a, zs);
+      const Column cb = column(b, zs);
+      if (a > s_prev) stretch(a, ca, cuts_between(c_prev, ca, a - s_prev));
+      stretch(b, cb, 1);
+      if (b < s_to) stretch(s_to, c_to, cuts_between(cb, c_to, s_to - b));
+    } else {
+      stretch(s_to, c_to, cuts_between(c_prev, c_to, s_to - s_prev));
     }
   }
-  s.push_back(first + span);
-  cols.push_back(next);
+  s.push_back(s_prev);
+  cols.push_back(c_prev);
   if (map_.closed()) cols.back() = cols.front();  // the same column, not a second sample of it
 
   auto wall_strip = [&](double s0, const Column& c0, double s1, const Column& c1, bool outer) {

@@ -20,6 +20,7 @@
 // `border` is a frame at full thickness around the picture (flat: all four
 // sides; cylinder: top and bottom), added outside the picture's area.
 #include <cstdint>
+#include <vector>
 
 #include "gcode/litho/image.hpp"
 
@@ -69,11 +70,18 @@ class HeightMap {
   double thickness(double s, double z) const;
   // The share of the thickness range at (s, z), 0..1 (1 in the border).
   double fraction(double s, double z) const;
+  // The thickness at a fixed z is linear in s between knots: the pixel
+  // centres (and the border's edges, where it jumps). Appends the knots
+  // strictly between s0 and s1 (s0 < s1; a cylinder's s may run past one
+  // turn) to `out` in increasing order.
+  void knots(double s0, double s1, std::vector<double>& out) const;
   // Bed XY of the point `depth` mm out from the base at `s`, for a
   // lithophane standing on (center_x, center_y): a flat plate's base face
   // lies max_thickness / 2 in front of the centre line (so the plate's
   // bounding box is centred), a cylinder's axis is on the centre.
   Point place(double s, double depth, double center_x, double center_y) const;
+  // The inverse of place: s (a cylinder's in [0, length)) and depth of a bed point.
+  void locate(Point p, double center_x, double center_y, double& s, double& depth) const;
   // Where (s, z) falls on the picture: u 0..1 left to right, v 0..1 top to
   // bottom; false in the border.
   bool image_uv(double s, double z, double& u, double& v) const;

@@ -6,15 +6,17 @@
 // so E per second (the extruder rate) is the same q on every piece that was
 // not clamped. E is relative (M83) and written with its rounding carried from
 // piece to piece. E is the planned width x layer height x the length as
-// written (3 decimals) / filament area, so width and rate are exact on
-// every move and the volume matches the plan to the rounding of lengths.
+// written / filament area, so width and rate are exact on every move and
+// the volume matches the plan to the rounding of lengths.
 //
 // The text looks like Cura's, so every gc tool and slicer viewer reads it:
 // ";FLAVOR:Marlin", ";LAYER_COUNT:n", ";LAYER:n" (0-based, before the layer's
 // first move), ";TYPE:WALL-OUTER" / "WALL-INNER" / "FILL", then a header that
-// lists every parameter. Numbers go through number.hpp (X/Y/Z 3 decimals,
-// E 6, F 0: pieces cut to 0.02 mm on steep parts push about 0.002 mm of
-// filament, where a fifth decimal alone would put their rate off by 0.5 %). Start and end code are built-in Marlin defaults (heat with
+// lists every parameter. Numbers go through number.hpp (X/Y 4 decimals, Z 3,
+// E 7, F 0): on hard edges pieces are cut down to a few micrometres along
+// the base, where 3 decimals of X/Y would put a bead's extent across the
+// band off by 20 % and more, and 6 of E a narrow piece's rate off by 1 %. Start and end code
+// are built-in Marlin defaults (heat with
 // M190/M109, home, a purge line in front of the part; retract, lift, heaters
 // and fan off, motors off) unless the caller passes its own text.
 //

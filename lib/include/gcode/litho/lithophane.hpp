@@ -14,12 +14,26 @@
 // the layer's band is [0, t(s)] deep (t from the HeightMap, sampled at the
 // middle of the layer). The inner wall takes [0, w], the outer wall
 // [t - w, t] and the passes share [w, t - w] equally; all boundaries are
-// linear between sample points `resolution` apart, so the pieces tile the
-// band exactly and each piece's volume is its strip's area x layer height.
+// linear between sample points, so the pieces tile the band exactly and each
+// piece's volume is its strip's area x layer height.
+// Sample points: candidates every `resolution` mm and at the picture's own
+// corners (at a fixed height the thickness is linear between pixel centres,
+// HeightMap::knots); kept are those the chord through the kept ones around
+// would miss by more than `surface_tolerance` (Douglas-Peucker), so a hard
+// edge or a one-pixel line is followed corner to corner while a straight
+// stretch of surface is one piece (at most 5 mm on a plate; round a cylinder
+// as long as the chord stays within 0.005 mm of the circle), and points
+// where the count of passes would change within a stretch.
 // A bead has one width per move, while the strip it fills widens or narrows
-// along the piece: where the thickness changes by more than `max_step`
-// along a piece, the piece is cut (down to `min_piece` long), so that the
-// beads' constant widths leave no gaps beside them on steep parts.
+// along the piece (linearly): at the piece's ends two neighbouring beads
+// then leave |change of one's depth + change of the other's| / 4 between
+// them, measured across the band. Each stretch between sample points is cut
+// into the fewest equal pieces that keep this at most `edge_gap` (pieces no
+// shorter than half of `min_piece`); where a pass appears or ends (the walls
+// stop sharing the band) the switch gets a piece of its own, short enough
+// for the thickness's slope (down to 0.001 mm), so the change on either side
+// of it is smooth. A flat plate's sample points lie on the written X's
+// 0.0001 mm grid, so even the shortest piece's extent is written exactly.
 // A piece's width at right angles to its path is area / length, so on a
 // slope a bead gets thinner and faster, and its extruder rate stays q.
 //   - q = line width x layer height x infill speed (what conventional infill
@@ -57,8 +71,9 @@ struct LithoOptions {
   double max_pass_width = 0;      // mm; 0 = 2.5 x nozzle
   double min_pass_width = 0;      // mm; 0 = 0.5 x nozzle
   double resolution = 0.2;        // mm between sample points along the base
-  double max_step = 0.1;          // mm of thickness change along one piece before it is cut
-  double min_piece = 0.02;        // mm: the shortest piece cutting makes (0.05: gaps up to 0.26 mm at hard edges)
+  double edge_gap = 0.04;         // mm: the widest gap cutting leaves beside a bead on steep parts
+  double surface_tolerance = 0.02;  // mm: a pixel's corner is a sample point where the chord misses it by more
+  double min_piece = 0.005;       // mm: the shortest piece cutting makes
   double first_layer_factor = 0.5;  // speed (and rate) factor on the first layer
   double center_x = 110;          // mm: where the lithophane stands on the bed
   double center_y = 110;
@@ -85,6 +100,12 @@ struct Path {
   PathRole role = PathRole::Fill;
   Point start;
   std::vector<Piece> pieces;
+  // Set by order_layer (path_order.hpp): the travel from `from` to `start`
+  // goes through `approach` and stays inside the layer's band, so it needs
+  // no retraction. Unset: a plain travel.
+  bool combed = false;
+  Point from;
+  std::vector<Point> approach;
 };
 
 struct LayerStats {
@@ -134,6 +155,9 @@ class LithophanePlanner {
     double s1, a1, b1;
   };
   Column column(double s, double z) const;
+  void keep_points(const std::vector<double>& cand, double z, std::vector<char>& keep) const;
+  double longest_piece() const;
+  int cuts_between(const Column& c0, const Column& c1, double length) const;
   double clamp_speed(double speed, Piece& piece, LayerStats& stats) const;
   static void push_piece(Path& path, const Piece& piece);
   bool add_strip(const Strip& strip, double rate, Path& path, LayerStats& stats) const;
