@@ -22,7 +22,7 @@ std::string clock_text(double seconds) {
 }  // namespace
 
 double estimated_remaining(double estimated_total, double estimated_done, double printing_seconds) {
-  if (estimated_total <= 0 || estimated_done < 0.1 * estimated_total || printing_seconds < 30) return -1;
+  if (estimated_total <= 0 || estimated_done < 0.05 * estimated_total || printing_seconds < 5) return -1;
   const double pace = printing_seconds / estimated_done;
   return std::max(0.0, estimated_total - estimated_done) * pace;
 }

@@ -326,9 +326,12 @@ ProgressSnapshot SendSession::snapshot() const {
   s.lines = st.lines;
   s.elapsed = st.print_start >= 0 ? EventLoop::now() - st.print_start : 0;
   s.lines_per_second = s.elapsed > 0 ? static_cast<double>(st.lines) / s.elapsed : 0;
-  if (current_ == nullptr)
-    s.eta = estimated_remaining(estimated_total_, sender_.estimated_time(),
-                                s.elapsed - control_->paused_seconds(EventLoop::now()));
+  if (current_ == nullptr && eta_origin_wall_ >= 0) {
+    // Paced from the first layer on: the start code's heating is not in the estimate.
+    const double now = EventLoop::now();
+    s.eta = estimated_remaining(estimated_total_ - eta_origin_estimate_, sender_.estimated_time() - eta_origin_estimate_,
+                                now - eta_origin_wall_ - (control_->paused_seconds(now) - eta_origin_paused_));
+  }
   if (s.eta < 0 && s.percent > 1 && s.elapsed > 0) s.eta = s.elapsed * (100 - s.percent) / s.percent;
   s.speed = control_->speed();
   s.temperatures = sender_.temperatures();
@@ -353,6 +356,11 @@ void SendSession::update() {
   sender_.pump(EventLoop::now());
   flush_port();
   control_->update(EventLoop::now());
+  if (eta_origin_wall_ < 0 && control_->layer() >= 1) {
+    eta_origin_wall_ = EventLoop::now();
+    eta_origin_estimate_ = sender_.estimated_time();
+    eta_origin_paused_ = control_->paused_seconds(eta_origin_wall_);
+  }
   if (progress_ && (control_->state_label() != shown_state_ || control_->layer() != shown_layer_)) {
     shown_state_ = control_->state_label();
     shown_layer_ = control_->layer();

@@ -38,8 +38,8 @@ struct ProgressOptions {
 // The time left, from the estimator: the printer seconds it gives the whole
 // input and what was handed over so far, paced by how the print ran (wall
 // seconds spent printing, pauses left out, per estimated second: a printer
-// slower than its model, a time scale, a speed factor). -1 until a tenth of
-// the estimate and half a minute of printing have run, or without an
+// slower than its model, a time scale, a speed factor). -1 until a
+// twentieth of the estimate and five seconds of printing have run, or without an
 // estimate (then the caller goes by the rate of the input).
 double estimated_remaining(double estimated_total, double estimated_done, double printing_seconds);
 

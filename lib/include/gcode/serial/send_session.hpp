@@ -112,6 +112,9 @@ class SendSession : private Stage {
   int shown_layer_ = -1;
   int total_layers_ = 0;
   double estimated_total_ = 0;
+  double eta_origin_wall_ = -1;     // when layer 1 began (the ETA's pace counts from there)
+  double eta_origin_estimate_ = 0;  // the estimate handed over by then
+  double eta_origin_paused_ = 0;
   // Swapped-in files, all kept: a swap starts inside a pipeline's call.
   std::vector<std::unique_ptr<Segment>> segments_;
   Segment* current_ = nullptr;  // what is fed now (null: the input)
