@@ -127,7 +127,7 @@ void PrintControl::process(std::string_view command, std::uint64_t source, int l
 void PrintControl::layer(const LayerInfo& info, const MachineState& before) {
   // A swap asked for goes first, unless a pause does (the swap then comes
   // at its resume).
-  if (swap_ && state_ == PrintState::Printing && !holding_ && swap_here(before, info.index - 1)) return;
+  if (swap_ && state_ == PrintState::Printing && !holding_ && swap_here(before, context_, info.index - 1)) return;
   layer_ = info.index;
   region_ = Region::Layer;
   sent_extrusion_ = false;
@@ -139,7 +139,7 @@ void PrintControl::layer(const LayerInfo& info, const MachineState& before) {
 
 void PrintControl::end_code(const MachineState& before) {
   // The file is done but for its end code: the other file goes on on top.
-  if (swap_ && state_ == PrintState::Printing && !holding_ && swap_here(before, layer_)) return;
+  if (swap_ && state_ == PrintState::Printing && !holding_ && swap_here(before, context_, layer_)) return;
   region_ = Region::EndCode;
   if (state_ != PrintState::Pausing) return;
   rush_.set_enabled(false);
@@ -376,9 +376,9 @@ void PrintControl::resume() {
   state_ = PrintState::Printing;
   holding_ = false;
   if (swap_ && at_layer_start()) {
-    // Back where it paused, as if it never had: the other file joins there.
-    context_ = paused_context_;
-    if (swap_here(pause_point_, std::max(0, layer_ - 1))) return;
+    // Back where it paused, as if it never had: the other file joins there
+    // (the held lines, observed after the pause point, are left out).
+    if (swap_here(pause_point_, paused_context_, std::max(0, layer_ - 1))) return;
   }
   diag_.info(fmt::format("resume: printing on from input line {}", last_source_ + 1));
   std::deque<Held> pending;
@@ -524,10 +524,10 @@ void PrintControl::request_swap(const std::string& path) {
     diag_.warn(0, fmt::format("swap {}: not possible here", path));
     return;
   }
+  const bool paused = state_ == PrintState::Paused;
   std::unique_ptr<JoinStream> next;
   try {
     next = std::make_unique<JoinStream>(path);
-    const bool paused = state_ == PrintState::Paused;
     next->plan((paused ? paused_context_ : context_).stream_point(paused ? pause_point_ : last_), precision_.of('Z'),
                "the print", nullptr);
   } catch (const std::exception& e) {
@@ -536,7 +536,6 @@ void PrintControl::request_swap(const std::string& path) {
   }
   if (swap_) diag_.info(fmt::format("swap {}: instead of {}", path, swap_->path()));
   swap_ = std::move(next);
-  const bool paused = state_ == PrintState::Paused;
   diag_.info(fmt::format("swap {}: {}", path,
                          paused && at_layer_start() ? "joins where the print paused, at the resume"
                          : paused                   ? "joins at the next layer's start after the resume"
@@ -544,11 +543,12 @@ void PrintControl::request_swap(const std::string& path) {
 }
 
 // The other file goes on from here: `at` is where the printer stands (the
-// current file's state after everything handed over), `layers_done` the
-// layers printed. False (the print goes on as it is) when it cannot join.
-bool PrintControl::swap_here(const MachineState& at, int layers_done) {
+// current file's state after everything handed over), `context` what was
+// printed up to there, `layers_done` the layers printed. False (the print
+// goes on as it is, nothing changed) when it cannot join.
+bool PrintControl::swap_here(const MachineState& at, const PauseContext& context, int layers_done) {
   std::unique_ptr<JoinStream> next = std::move(swap_);
-  StreamPoint printed = context_.stream_point(at);
+  StreamPoint printed = context.stream_point(at);
   char zt[kMaxNumberChars];
   std::string top(number_text(printed.top_z, 3, zt));
   try {
@@ -562,6 +562,7 @@ bool PrintControl::swap_here(const MachineState& at, int layers_done) {
                          last_source_));
   ++swaps_;
   last_ = at;
+  context_ = context;
   held_.clear();
   forget_recent();  // what went out last is no longer the input's
   layer_ = layers_done;

@@ -66,7 +66,7 @@ bool JoinStream::pump(std::string& text, const SeamOptions& options, const Preci
   const std::size_t before = text.size();
   while (next_block_ < blocks_.blocks.size()) {
     if (!stream_) {
-      // Only the first block can be in the other E mode's news: the rest are
+      // Only the first block's seam tells of another E mode: the rest are
       // the same file.
       stream_ = std::make_unique<BlockStream>(blocks_.blocks[next_block_], printed_, options, precision,
                                               next_block_ == 0 ? diag : nullptr);

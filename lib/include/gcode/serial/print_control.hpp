@@ -174,7 +174,7 @@ class PrintControl {
   void set_speed(double factor);
   void request_swap(const std::string& path);
   bool at_layer_start() const;
-  bool swap_here(const MachineState& at, int layers_done);
+  bool swap_here(const MachineState& at, const PauseContext& context, int layers_done);
   void withdraw_unsent();
   void forget_sent();
   void forget_recent();
