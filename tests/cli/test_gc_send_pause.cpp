@@ -74,6 +74,31 @@ std::map<std::uint64_t, int> layers_of(const std::string& text) {
   return collect.layer;
 }
 
+// A cancel's park in the executed log: the input's commands up to the
+// cancel, then moves that never push filament nor go down and retract
+// exactly the pause's 2 mm, or nothing where the file had retracted itself
+// (the pause block never retracts twice). Returns whether it had.
+bool check_cancel_park(const std::vector<Executed>& log, const std::vector<gctest::SentCommand>& input) {
+  std::size_t prefix = 0;
+  while (prefix < input.size() && prefix < log.size() && log[prefix].command == input[prefix].text) ++prefix;
+  REQUIRE(prefix > 0);
+  gcode::MachineState s;
+  gcode::RetractionTracker file_retraction;
+  for (std::size_t i = 0; i < prefix; ++i) file_retraction.observe(s.apply(gcode::Line::parse(log[i].command)));
+  const bool retracted = file_retraction.pending() > 1e-9;
+  double z = s.at(gcode::kZ).to_double(), pushed = 0;
+  for (std::size_t i = prefix; i < log.size(); ++i) {
+    INFO("park line " << log[i].command);
+    gcode::Move m = s.apply(gcode::Line::parse(log[i].command));
+    pushed += m.filament;
+    CHECK(m.filament <= 0);
+    CHECK(s.at(gcode::kZ).to_double() >= z - 1e-9);
+  }
+  // Counted from a command never sent, it would be that command's E short.
+  CHECK(pushed == Approx(retracted ? 0.0 : -2.0).margin(1e-9));
+  return retracted;
+}
+
 }  // namespace
 
 TEST_CASE("gc-send pause: at the end of the request's layer, rushed, resumed exactly, nothing lost", "[gc-send][pause]") {
@@ -248,25 +273,8 @@ TEST_CASE("gc-send: cancel parks, turns heaters off and exits 0, and junk in the
   std::vector<std::string> tail;
   for (std::size_t i = r.log.size() - 5; i < r.log.size(); ++i) tail.push_back(r.log[i].command);
   CHECK(tail == std::vector<std::string>{"M104 S0", "M140 S0", "M107", "M84", "M400"});
-  // The park starts where the printer is: the input's commands up to the
-  // cancel, then moves that never push filament nor go down.
-  auto input = gctest::commands_of(gctest::read_file(file));
-  std::size_t prefix = 0;
-  while (prefix < input.size() && prefix < r.log.size() && r.log[prefix].command == input[prefix].text) ++prefix;
-  REQUIRE(prefix > 0);
-  gcode::MachineState s;
-  gcode::RetractionTracker file_retraction;
-  for (std::size_t i = 0; i < prefix; ++i) file_retraction.observe(s.apply(gcode::Line::parse(r.log[i].command)));
-  double z = s.at(gcode::kZ).to_double(), pushed = 0;
-  for (std::size_t i = prefix; i < r.log.size(); ++i) {
-    INFO("park line " << r.log[i].command);
-    gcode::Move m = s.apply(gcode::Line::parse(r.log[i].command));
-    pushed += m.filament;
-    CHECK(m.filament <= 0);
-    CHECK(s.at(gcode::kZ).to_double() >= z - 1e-9);
-  }
-  // It retracted, unless the file had (the pause block never retracts twice).
-  CHECK(pushed == Approx(file_retraction.pending() > 1e-9 ? 0.0 : -2.0).margin(1e-9));
+  // The park starts where the printer is.
+  check_cancel_park(r.log, gctest::commands_of(gctest::read_file(file)));
 }
 
 TEST_CASE("gc-send: a cancel in absolute E parks from the last command on its way", "[gc-send][pause]") {
@@ -285,24 +293,8 @@ TEST_CASE("gc-send: a cancel in absolute E parks from the last command on its wa
                                    std::string("at_layer 1; sleep ") + delay + "; echo cancel > \"$F\"");
     INFO(r.result.err);
     REQUIRE(r.result.status == 0);
-    std::size_t prefix = 0;
-    while (prefix < input.size() && prefix < r.log.size() && r.log[prefix].command == input[prefix].text) ++prefix;
-    REQUIRE(prefix > 0);
-    gcode::MachineState s;
-    gcode::RetractionTracker file_retraction;
-    for (std::size_t i = 0; i < prefix; ++i) file_retraction.observe(s.apply(gcode::Line::parse(r.log[i].command)));
-    const bool retracted = file_retraction.pending() > 1e-9;
+    const bool retracted = check_cancel_park(r.log, input);
     if (!retracted && r.result.err.find("not sent yet are left out") != std::string::npos) ++left_out;
-    double pushed = 0;
-    for (std::size_t i = prefix; i < r.log.size(); ++i) {
-      INFO("park line " << r.log[i].command);
-      gcode::Move m = s.apply(gcode::Line::parse(r.log[i].command));
-      CHECK(m.filament <= 0);
-      pushed += m.filament;
-    }
-    // Exactly the pause's 2 mm, none if the file had retracted already:
-    // counted from a command never sent, it would be that command's E short.
-    CHECK(pushed == Approx(retracted ? 0.0 : -2.0).margin(1e-9));
   }
   CHECK(left_out > 0);  // the case this test is for did happen (commands left out, nothing retracted)
 }

@@ -1,3 +1,9 @@
+// The printing order of a lithophane layer (litho/path_order.hpp): the same
+// beads per role as the planner made, walls first, each layer starting
+// within the band's thickness of where the last one ended, every travel
+// inside the band (so the G-code retracts only before the first layer and at
+// the end), and a gradient cylinder's passes travelling a fraction of what
+// the planner's own order would.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
