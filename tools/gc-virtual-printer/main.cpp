@@ -17,7 +17,7 @@
 #include "gcode/serial/port.hpp"
 #include "gcode/serial/virtual_link.hpp"
 #include "gcode/serial/virtual_printer.hpp"
-#include "gcode/cli/io.hpp"
+#include "gcode/core/file_io.hpp"
 #include "gcode/cli/tool.hpp"
 
 namespace {

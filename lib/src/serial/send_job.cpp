@@ -10,7 +10,7 @@
 
 #include <fmt/format.h>
 
-#include "gcode/cli/io.hpp"
+#include "gcode/core/file_io.hpp"
 #include "gcode/pipeline/pipeline.hpp"
 #include "gcode/report/layer_time.hpp"
 #include "gcode/serial/event_loop.hpp"

@@ -15,7 +15,7 @@
 #include <string_view>
 #include <vector>
 
-#include "gcode/cli/io.hpp"
+#include "gcode/core/file_io.hpp"
 #include "gcode/cli/tool.hpp"
 #include "gcode/core/output_buffer.hpp"
 #include "gcode/core/print_area.hpp"

@@ -2,7 +2,7 @@
 // Geometry of G2/G3 arcs in the XY plane (G17), in the I/J (centre offset)
 // and R (radius) forms, with helical Z and Marlin's P word (ARC_P_CIRCLES:
 // P full turns before the arc itself).
-#include "gcode/core/machine_state.hpp"
+#include "gcode/core/line.hpp"
 
 namespace gcode {
 

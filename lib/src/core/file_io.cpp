@@ -1,4 +1,4 @@
-#include "gcode/cli/io.hpp"
+#include "gcode/core/file_io.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>

@@ -1,7 +1,9 @@
 #pragma once
-// The input and output conventions every gc tool shares: FILE or '-' for
-// stdin, -o FILE, and -i/--in-place (write a temp file beside FILE, rename it
-// over FILE only when the tool succeeded, as slicer post-processing hooks need).
+// Opening a program's input and output by the conventions every gc tool
+// shares: FILE or '-' for stdin, -o FILE, and -i/--in-place (write a temp
+// file beside FILE, rename it over FILE only when the program succeeded, as
+// slicer post-processing hooks need). Plain files and descriptors: nothing
+// here knows about command lines.
 #include <string>
 
 namespace gcode {

@@ -1,4 +1,4 @@
-// FILE, '-', -o and -i (cli/io.hpp): readable messages for what cannot be
+// FILE, '-', -o and -i (core/file_io.hpp): readable messages for what cannot be
 // opened, a pipe made seekable by spooling it, an in-place temp file beside
 // FILE that replaces it only on commit (with FILE's permissions) and is
 // removed otherwise.
@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "gcode/cli/io.hpp"
+#include "gcode/core/file_io.hpp"
 #include "capture.hpp"
 
 using gcode::InputFile;
