@@ -62,7 +62,7 @@ for pattern in '/libgcode\.a$' '/cmake/gcode-tools/gcode-toolsConfig\.cmake$' '/
   check
   grep -q -- "$pattern" "$work/dev.files" || fail "gcode-tools-dev has nothing matching $pattern"
 done
-for dep in libfmt-dev libre2-dev libcli11-dev libstb-dev; do
+for dep in libfmt-dev libre2-dev libcli11-dev libstb-dev libxxhash-dev; do
   check
   printf '%s\n' "$dev_depends" | grep -q -- "$dep" || fail "gcode-tools-dev does not depend on $dep"
 done

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "gcode/core/text.hpp"
+#include "gcode/serial/private_path.hpp"
 
 namespace gcode::serial {
 
@@ -151,11 +152,7 @@ void ControlParser::feed(std::string_view bytes) {
 }
 
 std::string default_control_path(std::string_view port) {
-  std::size_t slash = port.rfind('/');
-  std::string name(slash == std::string_view::npos ? port : port.substr(slash + 1));
-  std::size_t colon = name.find(':');
-  if (colon != std::string::npos) name.resize(colon);  // "virtual:time-scale=20"
-  if (name.empty()) name = "port";
+  std::string name = port_file_name(port);
   const char* runtime = std::getenv("XDG_RUNTIME_DIR");
   std::string dir = runtime != nullptr && runtime[0] == '/' ? std::string(runtime) + "/gc-send"
                                                             : fmt::format("/tmp/gc-send-{}", ::getuid());
@@ -195,14 +192,8 @@ ControlFifo::ControlFifo(std::string path) : path_(std::move(path)) {
   }
   // Its folder too: someone else who may write there could swap the FIFO
   // (a sticky folder such as /tmp only lets owners remove their files).
-  std::size_t slash = path_.rfind('/');
-  std::string dir = slash == std::string::npos ? std::string(".") : slash == 0 ? std::string("/") : path_.substr(0, slash);
-  struct stat ds{};
-  if (::stat(dir.c_str(), &ds) == 0 && (ds.st_mode & S_ISVTX) == 0 &&
-      (ds.st_uid != ::getuid() && ds.st_uid != 0 ? true : (ds.st_mode & (S_IWGRP | S_IWOTH)) != 0))
-    throw std::runtime_error(fmt::format(
-        "control FIFO refused: its folder {} can be changed by others (owner uid {}, mode {:o})", dir, ds.st_uid,
-        ds.st_mode & 07777));
+  std::string folder = folder_problem(folder_of(path_), "control FIFO");
+  if (!folder.empty()) throw std::runtime_error(folder);
   std::string problem = control_path_problem(path_, ::getuid());
   if (!problem.empty()) throw std::runtime_error("control FIFO refused: " + problem);
   fd_ = ::open(path_.c_str(), O_RDWR | O_NONBLOCK | O_CLOEXEC | O_NOFOLLOW);
