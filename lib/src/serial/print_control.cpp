@@ -65,7 +65,7 @@ void PrintControl::add_stages(Pipeline& pipeline) {
 }
 
 std::string_view PrintControl::state_label() const {
-  if (state_ == PrintState::Paused && !pauses_.empty() && pauses_.back().wall_paused < 0) return "pausing";
+  if (state_ == PrintState::Paused && pauses_.reaching()) return "pausing";
   return print_state_name(state_);
 }
 
@@ -73,8 +73,8 @@ void PrintControl::line(const TrackedLine& t) {
   const Line& line = t.line;
   region_ = t.region;
   if (t.layer > 0) layer_ = t.layer;
-  context_before_ = context_;
-  context_.observe(t);
+  printed_before_line_ = printed_;
+  printed_.observe(t);
   bool host_pause = false;
   if (line.kind == CommandKind::None && !line.malformed) {
     // ";@pause": a comment only for the slicer, a pause for the host.
@@ -117,9 +117,9 @@ void PrintControl::process(std::string_view command, std::uint64_t source, int l
     return;
   }
   forget_sent();
-  recent_.push_back(Recent{last_, context_before_, source, layer, sender_.last_submitted() + 1});
+  ledger_.handed({handed_, printed_before_line_, source, layer, sender_.last_submitted() + 1});
   sender_.submit(command, source, layer);
-  last_ = after;
+  handed_ = after;
   last_source_ = source;
   if (extruding) sent_extrusion_ = true;
 }
@@ -127,53 +127,46 @@ void PrintControl::process(std::string_view command, std::uint64_t source, int l
 void PrintControl::layer(const LayerInfo& info, const MachineState& before) {
   // A swap asked for goes first, unless a pause does (the swap then comes
   // at its resume).
-  if (swap_ && state_ == PrintState::Printing && !holding_ && swap_here(before, context_, info.index - 1)) return;
+  if (swap_ && state_ == PrintState::Printing && !holding_ && swap_here(before, printed_, info.index - 1)) return;
   layer_ = info.index;
   region_ = Region::Layer;
   sent_extrusion_ = false;
   if (state_ != PrintState::Pausing) return;
-  rush_.set_enabled(false);
-  pauses_.back().paused_before_layer = info.index;
-  pause_here(before);
+  pauses_.current().paused_before_layer = info.index;
+  finish_pausing(before);
 }
 
 void PrintControl::end_code(const MachineState& before) {
   // The file is done but for its end code: the other file goes on on top.
-  if (swap_ && state_ == PrintState::Printing && !holding_ && swap_here(before, context_, layer_)) return;
+  if (swap_ && state_ == PrintState::Printing && !holding_ && swap_here(before, printed_, layer_)) return;
   region_ = Region::EndCode;
-  if (state_ != PrintState::Pausing) return;
-  rush_.set_enabled(false);
-  pause_here(before);
+  if (state_ == PrintState::Pausing) finish_pausing(before);
 }
 
 void PrintControl::end_of_input() {
   input_ended_ = true;
   // A file cut short (no next layer, no end code): the pause goes at its end.
-  if (state_ != PrintState::Pausing) return;
+  if (state_ == PrintState::Pausing) finish_pausing(handed_);
+}
+
+// The layer asked to be finished is: the rush ends, the pause goes here.
+void PrintControl::finish_pausing(const MachineState& at) {
   rush_.set_enabled(false);
-  pause_here(last_);
+  pause_here(at);
 }
 
 PauseRecord& PrintControl::start_record(std::string request) {
-  PauseRecord r;
-  r.request = std::move(request);
-  r.layer = layer_;
-  r.wall_request = EventLoop::now();
-  if (probe_.now) {
-    r.printer_request = probe_.now();
-    diag_.info(fmt::format("{}: asked at printer time {:.6f} s", r.request, r.printer_request));
-  }
-  pauses_.push_back(std::move(r));
-  return pauses_.back();
+  PauseRecord& r = pauses_.start(std::move(request), layer_, EventLoop::now(), probe_.now ? probe_.now() : -1);
+  if (probe_.now) diag_.info(fmt::format("{}: asked at printer time {:.6f} s", r.request, r.printer_request));
+  return r;
 }
 
 void PrintControl::request_pause(std::string request, bool now) {
   if (state_ == PrintState::Cancelling) return;
   if (state_ == PrintState::Pausing && now) {
     // Escalated: no need to finish the layer any more.
-    rush_.set_enabled(false);
     withdraw_unsent();
-    pause_here(last_);
+    finish_pausing(handed_);
     return;
   }
   if (state_ != PrintState::Printing) {
@@ -184,7 +177,7 @@ void PrintControl::request_pause(std::string request, bool now) {
   if (probe_.travelled && r.printer_request >= 0) r.path_at_request = probe_.travelled(r.printer_request);
   if (now || region_ == Region::EndCode) {
     withdraw_unsent();
-    pause_here(last_);
+    pause_here(handed_);
     return;
   }
   state_ = PrintState::Pausing;
@@ -203,57 +196,49 @@ void PrintControl::request_pause(std::string request, bool now) {
 void PrintControl::withdraw_unsent() {
   // Only the commands of the file since the last block are known here.
   forget_sent();
-  std::size_t n = std::min(recent_.size(), sender_.pending());
+  std::size_t n = std::min(ledger_.size(), sender_.pending());
   if (!can_rewind(n)) return;
-  const std::size_t from = recent_.size() - n;
   std::vector<std::string> commands;
-  if (sender_.withdraw_unsent(n, recent_[from].before, commands) != n) return;
+  if (sender_.withdraw_unsent(n, ledger_.entries()[ledger_.size() - n].before, commands) != n) return;
+  const MachineState after_all = handed_;
+  std::vector<TakeBackLedger::Entry> taken = rewind(n);
   std::deque<Held> back;
   for (std::size_t i = 0; i < n; ++i) {
-    const Recent& r = recent_[from + i];
-    const MachineState& after = i + 1 < n ? recent_[from + i + 1].before : last_;
-    back.push_back(Held{commands[i], r.source, r.layer, after, false});
+    const MachineState& after = i + 1 < n ? taken[i + 1].before : after_all;
+    back.push_back(Held{commands[i], taken[i].source, taken[i].layer, after, false});
   }
   for (auto it = held_.begin(); it != held_.end(); ++it) back.push_back(std::move(*it));
   held_.swap(back);
-  rewind(n);
   diag_.info(fmt::format("pause now: {} commands not sent yet go after the pause", n));
 }
 
 // What the sender has sent can no longer be taken back.
 void PrintControl::forget_sent() {
-  const long long sent = sender_.last_submitted() - static_cast<long long>(sender_.pending());
-  while (!recent_.empty() && recent_.front().number <= sent) {
-    sent_source_ = recent_.front().source;
-    recent_.pop_front();
-  }
+  ledger_.sent_through(sender_.last_submitted() - static_cast<long long>(sender_.pending()));
 }
 
 // Lines of its own go to the sender: what came before them cannot be taken
 // back over them.
-void PrintControl::forget_recent() {
-  recent_.clear();
-  sent_source_ = last_source_;
-}
+void PrintControl::forget_recent() { ledger_.own_lines(last_source_); }
 
 // Whether the last `n` commands handed to the sender are the file's, unsent.
 bool PrintControl::can_rewind(std::size_t n) {
   forget_sent();
-  return n > 0 && n <= recent_.size() && n <= sender_.pending();
+  return ledger_.can_take_back(n, sender_.pending());
 }
 
 // The stream's state and the pause context go back to before the last `n`
-// commands handed to the sender (can_rewind(n)).
-void PrintControl::rewind(std::size_t n) {
-  const std::size_t from = recent_.size() - n;
-  last_ = recent_[from].before;
-  context_ = recent_[from].context;
-  last_source_ = from > 0 ? recent_[from - 1].source : sent_source_;
-  recent_.resize(from);
+// commands handed to the sender (can_rewind(n)); returns their entries.
+std::vector<TakeBackLedger::Entry> PrintControl::rewind(std::size_t n) {
+  std::vector<TakeBackLedger::Entry> taken = ledger_.take_back(n);
+  handed_ = taken.front().before;
+  printed_ = taken.front().context;
+  last_source_ = ledger_.last_source();
+  return taken;
 }
 
 void PrintControl::pause_here(const MachineState& at) {
-  PauseRecord& r = pauses_.back();
+  PauseRecord& r = pauses_.current();
   PauseConfig c = config_.pause;
   char zt[kMaxNumberChars];
   Placeholders values{{"layer", std::to_string(std::max(layer_, 1))}, {"z", std::string(number_text(at.position[kZ], 3, zt))}};
@@ -261,8 +246,8 @@ void PrintControl::pause_here(const MachineState& at) {
     *text = expand_placeholders(*text, values);
   PauseBlock block;
   try {
-    config_.park.place(context_, precision_, c);
-    block = build_pause(context_.point(at, &precision_), c);
+    config_.park.place(printed_, precision_, c);
+    block = build_pause(printed_.point(at, &precision_), c);
   } catch (const std::exception& e) {
     diag_.warn(0, fmt::format("{}: cannot park ({}); holding the print where it is", r.request, e.what()));
     hold_here(r.request);
@@ -273,40 +258,47 @@ void PrintControl::pause_here(const MachineState& at) {
   r.block = true;
   if (probe_.watch) probe_.watch(r.block_number);
   submit_lines(block.pause, layer_);
-  pause_point_ = at;
-  paused_context_ = context_;
-  expected_ = at;
-  for (const std::string& l : block.pause) track(l, expected_);
-  paused_ = expected_;
-  resume_lines_ = std::move(block.resume);
-  safe_z_ = block.safe_z;
-  holding_ = true;
-  own_block_ = true;
-  state_ = PrintState::Paused;
+  MachineState parked = at;
+  for (const std::string& l : block.pause) track(l, parked);
+  stop_at(at, parked, true);
+  stop_.resume_lines = std::move(block.resume);
   diag_.info(fmt::format("{}: pause block sent after input line {} (asked in layer {}); waiting for resume",
                          r.request, last_source_, r.layer));
 }
 
 void PrintControl::hold_here(std::string request) {
   if (state_ == PrintState::Printing || pauses_.empty()) start_record(std::move(request));
-  PauseRecord& r = pauses_.back();
+  PauseRecord& r = pauses_.current();
   r.input_line = last_source_;
   r.block_number = sender_.last_submitted() + 1;
-  pause_point_ = last_;
-  paused_context_ = context_;
-  expected_ = last_;
-  paused_ = last_;
-  resume_lines_.clear();
-  holding_ = true;
-  own_block_ = false;
-  state_ = PrintState::Paused;
+  stop_at(handed_, handed_, false);
   diag_.info(fmt::format("{}: holding after input line {} (layer {}); waiting for resume", r.request, last_source_,
                          layer_));
+}
+
+// The print stops with the stream `at`; the resume starts from `resume_from`.
+void PrintControl::stop_at(const MachineState& at, const MachineState& resume_from, bool own_block) {
+  stop_.at = at;
+  stop_.printed = printed_;
+  stop_.resume_from = resume_from;
+  stop_.printer = resume_from;
+  stop_.resume_lines.clear();
+  stop_.own_block = own_block;
+  holding_ = true;
+  state_ = PrintState::Paused;
 }
 
 void PrintControl::submit_lines(const std::vector<std::string>& lines, int layer) {
   forget_recent();  // the newest commands are no longer the file's
   for (const std::string& l : lines) sender_.submit(l, 0, layer);
+}
+
+// A command of the user's while paused: followed, so the resume returns
+// exactly.
+void PrintControl::submit_typed(std::string_view command) {
+  forget_recent();
+  sender_.submit(command, 0, layer_);
+  track(command, stop_.printer);
 }
 
 void PrintControl::track(std::string_view text, MachineState& state) const {
@@ -330,7 +322,7 @@ std::vector<std::string> PrintControl::put_back(const MachineState& from, const 
   const int fd = precision_.of('F');
   if (moved) {
     if (now.relative_xyz) emit("G90");
-    Fixed high = std::max({now.at(kZ), to.at(kZ), Fixed::from_double(context_.top_z() + config_.pause.lift)});
+    Fixed high = std::max({now.at(kZ), to.at(kZ), Fixed::from_double(printed_.top_z() + config_.pause.lift)});
     char b[kMaxNumberChars];
     std::string zf(number_text(config_.pause.z_speed * 60, fd, b));
     std::string xyf(number_text(config_.pause.travel_speed * 60, fd, b));
@@ -357,7 +349,7 @@ void PrintControl::resume() {
   if (state_ == PrintState::Pausing) {
     rush_.set_enabled(false);
     state_ = PrintState::Printing;
-    pauses_.pop_back();
+    pauses_.call_off();
     diag_.info("resume: the pause asked for is called off");
     return;
   }
@@ -365,20 +357,19 @@ void PrintControl::resume() {
     diag_.info("resume: not paused");
     return;
   }
-  std::vector<std::string> lines = put_back(paused_, expected_);
+  std::vector<std::string> lines = put_back(stop_.printer, stop_.resume_from);
   if (!lines.empty())
     diag_.info(fmt::format("resume: {} lines put back what the commands typed while paused changed", lines.size()));
-  if (own_block_) lines.insert(lines.end(), resume_lines_.begin(), resume_lines_.end());
+  if (stop_.own_block) lines.insert(lines.end(), stop_.resume_lines.begin(), stop_.resume_lines.end());
   submit_lines(lines, layer_);
-  resume_lines_.clear();
-  if (pauses_.back().wall_paused < 0) pauses_.back().wall_paused = EventLoop::now();
-  paused_seconds_ += EventLoop::now() - pauses_.back().wall_paused;
+  stop_.resume_lines.clear();
+  pauses_.resumed(EventLoop::now());
   state_ = PrintState::Printing;
   holding_ = false;
   if (swap_ && at_layer_start()) {
     // Back where it paused, as if it never had: the other file joins there
     // (the held lines, observed after the pause point, are left out).
-    if (swap_here(pause_point_, paused_context_, std::max(0, layer_ - 1))) return;
+    if (swap_here(stop_.at, stop_.printed, std::max(0, layer_ - 1))) return;
   }
   diag_.info(fmt::format("resume: printing on from input line {}", last_source_ + 1));
   std::deque<Held> pending;
@@ -388,7 +379,7 @@ void PrintControl::resume() {
 
 void PrintControl::cancel() {
   if (state_ == PrintState::Cancelling) return;
-  bool parked = state_ == PrintState::Paused && own_block_;
+  bool parked = state_ == PrintState::Paused && stop_.own_block;
   rush_.set_enabled(false);
   held_.clear();
   if (swap_) diag_.info(fmt::format("cancel: swap {} called off", swap_->path()));
@@ -408,7 +399,18 @@ void PrintControl::cancel() {
       diag_.info(fmt::format("cancel: {} commands not sent yet go out first", unsent));
     }
   }
-  const MachineState& at = state_ == PrintState::Paused ? paused_ : last_;
+  std::vector<std::string> lines = safe_end(state_ == PrintState::Paused ? stop_.printer : handed_, parked);
+  state_ = PrintState::Cancelling;
+  holding_ = true;
+  submit_lines(lines, layer_);
+  sender_.end_of_input();
+  diag_.error(fmt::format("cancelled after input line {} (layer {}): {}", last_source_, layer_,
+                          parked ? "heaters and motors off" : "retract, lift, park, heaters and motors off"));
+}
+
+// A cancel's end from `at`: retract, lift and park (unless `parked` by a
+// pause block already), then the cancel G-code (heaters and motors off).
+std::vector<std::string> PrintControl::safe_end(const MachineState& at, bool parked) {
   std::vector<std::string> lines;
   if (!parked) {
     PauseConfig c = config_.pause;
@@ -420,26 +422,18 @@ void PrintControl::cancel() {
     c.beep = false;
     c.stepper_hold = 0;
     try {
-      config_.park.place(context_, precision_, c);
-      lines = build_pause(context_.point(at, &precision_), c).pause;
+      config_.park.place(printed_, precision_, c);
+      lines = build_pause(printed_.point(at, &precision_), c).pause;
     } catch (const std::exception& e) {
       diag_.warn(0, fmt::format("cancel: cannot park ({}); heaters and motors off where the head is", e.what()));
     }
   }
   for (std::string& l : split_lines(config_.cancel_gcode)) lines.push_back(std::move(l));
-  state_ = PrintState::Cancelling;
-  holding_ = true;
-  submit_lines(lines, layer_);
-  sender_.end_of_input();
-  diag_.error(fmt::format("cancelled after input line {} (layer {}): {}", last_source_, layer_,
-                          parked ? "heaters and motors off" : "retract, lift, park, heaters and motors off"));
+  return lines;
 }
 
 double PrintControl::paused_seconds(double now) const {
-  double s = paused_seconds_;
-  if (state_ == PrintState::Paused && !pauses_.empty() && pauses_.back().wall_paused >= 0)
-    s += now - pauses_.back().wall_paused;
-  return s;
+  return pauses_.paused_seconds(now, state_ == PrintState::Paused);
 }
 
 bool PrintControl::interrupt() {
@@ -461,12 +455,9 @@ void PrintControl::user_gcode(const std::string& text) {
     diag_.warn(0, fmt::format("gcode '{}': not a command for the printer", text));
     return;
   }
-  std::string copy(command);
-  forget_recent();
-  sender_.submit(copy, 0, layer_);
-  track(copy, paused_);
+  submit_typed(command);
   ++user_commands_;
-  diag_.info(fmt::format("gcode: {} sent", copy));
+  diag_.info(fmt::format("gcode: {} sent", command));
 }
 
 // insert FILE: its commands go out while paused, followed like typed ones,
@@ -490,15 +481,12 @@ void PrintControl::insert_file(const std::string& path) {
     return;
   }
   std::size_t sent = 0;
-  forget_recent();
   for (const std::string& l : split_lines(text)) {
     Line line = Line::parse(l);
     if (line.kind == CommandKind::None || line.kind == CommandKind::Host || line.is_m(110)) continue;
     std::string_view command = command_for_sending(line, scratch_);
     if (command.empty()) continue;
-    std::string copy(command);
-    sender_.submit(copy, 0, layer_);
-    track(copy, paused_);
+    submit_typed(command);
     ++sent;
   }
   user_commands_ += sent;
@@ -528,7 +516,7 @@ void PrintControl::request_swap(const std::string& path) {
   std::unique_ptr<JoinStream> next;
   try {
     next = std::make_unique<JoinStream>(path);
-    next->plan((paused ? paused_context_ : context_).stream_point(paused ? pause_point_ : last_), precision_.of('Z'),
+    next->plan((paused ? stop_.printed : printed_).stream_point(paused ? stop_.at : handed_), precision_.of('Z'),
                "the print", nullptr);
   } catch (const std::exception& e) {
     diag_.warn(0, fmt::format("swap {}: {}; the print goes on as it is", path, e.what()));
@@ -561,8 +549,8 @@ bool PrintControl::swap_here(const MachineState& at, const PauseContext& context
   diag_.info(fmt::format("swap {}: joined onto layer {} (Z {}) after input line {}", next->path(), layers_done, top,
                          last_source_));
   ++swaps_;
-  last_ = at;
-  context_ = context;
+  handed_ = at;
+  printed_ = context;
   held_.clear();
   forget_recent();  // what went out last is no longer the input's
   layer_ = layers_done;
@@ -602,9 +590,9 @@ void PrintControl::action(std::string_view text) {
 
 void PrintControl::update(double now) {
   if (pauses_.empty()) return;
-  PauseRecord& r = pauses_.back();
+  PauseRecord& r = pauses_.current();
   if (state_ == PrintState::Paused && r.wall_paused < 0 && sender_.idle()) {
-    r.wall_paused = now;
+    pauses_.reached(now);
     diag_.info(fmt::format("paused (layer {}, {:.2f} s after the request); waiting for resume", r.layer,
                            now - r.wall_request));
     if (on_status) on_status();

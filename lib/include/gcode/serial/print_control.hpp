@@ -42,7 +42,9 @@
 #include "gcode/core/line_builder.hpp"
 #include "gcode/pipeline/pipeline.hpp"
 #include "gcode/serial/control_fifo.hpp"
+#include "gcode/serial/pause_log.hpp"
 #include "gcode/serial/sender.hpp"
+#include "gcode/serial/take_back.hpp"
 #include "gcode/transform/join_stream.hpp"
 #include "gcode/transform/pause_context.hpp"
 #include "gcode/transform/seam.hpp"
@@ -73,22 +75,6 @@ struct MotionProbe {
   // When the motion ahead of the watched command ended and the path queued
   // before it; false while it has not run yet.
   std::function<bool(double&, double&)> watched;
-};
-
-// One pause, for the summary and the status.
-struct PauseRecord {
-  std::string request;          // "pause", "pause now", "@pause", "//action:pause"
-  int layer = 0;                // the layer the request came in
-  int paused_before_layer = 0;  // the block went before this layer (0: mid-layer or end code)
-  std::uint64_t input_line = 0; // the last input line sent before the block
-  double wall_request = 0;      // when the request came (monotonic)
-  double wall_paused = -1;      // when the printer had done the block
-  double printer_request = -1;  // MotionProbe: printer time of the request
-  double latency_s = -1;        // MotionProbe: from the request to the motion's end
-  double latency_mm = -1;       // MotionProbe: the path the nozzle went meanwhile
-  long long block_number = 0;   // the block's first line number
-  bool block = false;           // gc-send's own block (not the file's pause)
-  double path_at_request = -1;  // MotionProbe: the path travelled by the request
 };
 
 class PrintControl {
@@ -124,7 +110,7 @@ class PrintControl {
   // "paused" only once the printer has done the block.
   std::string_view state_label() const;
   int layer() const { return layer_; }
-  const std::vector<PauseRecord>& pauses() const { return pauses_; }
+  const std::vector<PauseRecord>& pauses() const { return pauses_.records(); }
   bool cancelled() const { return state_ == PrintState::Cancelling; }
   std::uint64_t user_commands() const { return user_commands_; }
   std::uint64_t host_commands() const { return host_commands_; }
@@ -142,6 +128,7 @@ class PrintControl {
   double paused_seconds(double now) const;
 
  private:
+  // A line of the file held back while paused (or cancelling).
   struct Held {
     std::string command;     // as sent ("" for an in-stream pause)
     std::uint64_t source = 0;
@@ -150,25 +137,28 @@ class PrintControl {
     bool host_pause = false;
     bool extruding = false;
   };
-  // The file's commands handed to the sender and maybe not sent yet, since
-  // the last lines of its own (a block): a pause now takes back those not
-  // sent, a cancel leaves them out, and both go on from before them.
-  struct Recent {
-    MachineState before;
-    PauseContext context;
-    std::uint64_t source = 0;
-    int layer = 0;
-    long long number = 0;  // the sender's
+  // Where a pause stopped the print, and what its resume must undo.
+  struct Stop {
+    MachineState at;             // the stream where the print stopped (before any block)
+    PauseContext printed;        // what was printed there (held lines are observed after it)
+    MachineState resume_from;    // what the resume block starts from (the block's end, or `at`)
+    MachineState printer;        // the printer while paused: resume_from and the commands typed since
+    std::vector<std::string> resume_lines;  // the block's way back (own_block)
+    bool own_block = false;      // the pause is ours (a block to undo), not the file's
   };
   void process(std::string_view command, std::uint64_t source, int layer, const MachineState& after, bool host_pause,
                bool extruding);
   void submit_lines(const std::vector<std::string>& lines, int layer);
+  void submit_typed(std::string_view command);
   void track(std::string_view line, MachineState& state) const;
   void request_pause(std::string request, bool now);
+  void finish_pausing(const MachineState& at);
   void pause_here(const MachineState& at);
   void hold_here(std::string request);
+  void stop_at(const MachineState& at, const MachineState& resume_from, bool own_block);
   void resume();
   void cancel();
+  std::vector<std::string> safe_end(const MachineState& at, bool parked);
   void user_gcode(const std::string& text);
   void insert_file(const std::string& path);
   void set_speed(double factor);
@@ -179,9 +169,8 @@ class PrintControl {
   void forget_sent();
   void forget_recent();
   bool can_rewind(std::size_t n);
-  void rewind(std::size_t n);
+  std::vector<TakeBackLedger::Entry> rewind(std::size_t n);
   std::vector<std::string> put_back(const MachineState& from, const MachineState& to) const;
-  void report_status();
   PauseRecord& start_record(std::string request);
 
   PrintControlConfig config_;
@@ -190,37 +179,32 @@ class PrintControl {
   const Precision& precision_;
   SpeedStage user_speed_;
   SpeedStage rush_;
-  PauseContext context_;
   MotionProbe probe_;
 
   PrintState state_ = PrintState::Printing;
   bool holding_ = false;
-  bool own_block_ = false;       // the pause is ours (a block to undo), not the file's
   bool input_ended_ = false;
   int layer_ = 0;
   Region region_ = Region::StartCode;
   int interrupts_ = 0;
-  MachineState last_;            // after the last command handed to the sender
-  MachineState expected_;        // what the resume starts from (the block's end, or the pause point)
-  MachineState paused_;          // the printer while paused, with the commands typed since
-  std::vector<std::string> resume_lines_;
-  double safe_z_ = 0;
+  // The stream as handed to the sender: its state after the last command,
+  // what it printed (the pause context) after it and before the line being
+  // handled, and that command's input line.
+  MachineState handed_;
+  PauseContext printed_;
+  PauseContext printed_before_line_;
+  std::uint64_t last_source_ = 0;
+  bool sent_extrusion_ = false;      // an extruding move went out since the last layer's start
+  Stop stop_;                        // while paused (or holding)
   std::deque<Held> held_;
-  std::deque<Recent> recent_;
-  std::uint64_t sent_source_ = 0;    // the source of the last command known sent (before recent_)
-  PauseContext context_before_;      // before the line being handled
+  TakeBackLedger ledger_;
+  PauseLog pauses_;
   std::string scratch_;
-  std::vector<PauseRecord> pauses_;
   std::uint64_t user_commands_ = 0;
   std::uint64_t host_commands_ = 0;
   double speed_ = 1;
-  std::uint64_t last_source_ = 0;
-  MachineState pause_point_;         // where the print stopped (before the block)
-  PauseContext paused_context_;      // the context there (held lines are observed after it)
-  bool sent_extrusion_ = false;      // an extruding move went out since the last layer's start
   std::unique_ptr<JoinStream> swap_; // asked for, not started yet
   std::uint64_t swaps_ = 0;
-  double paused_seconds_ = 0;        // of the pauses resumed
 };
 
 }  // namespace gcode::serial
