@@ -1,0 +1,29 @@
+#pragma once
+// A machine state as journal fields (journal.hpp), and back: what a resume
+// needs to put the printer where the print was. Every state writes the same
+// keys, so the journal's deltas hold only what a command changed (a G1:
+// x, y, e); positions are exact decimals, as MachineState keeps them, so a
+// state read back is the same machine (same_machine) as the one written.
+//
+//   x y z e          file coordinates        ox oy oz oe   G92 offsets
+//   known            axes whose position is known ("xyz", "xy", "")
+//   f                feed rate, mm/min       g91 m83 g20   modes (0/1)
+//   emode eg90       the file set M82/M83; Marlin's G90 also sets E
+//   fw               firmware retraction: "" unused, "in" used, "out" retracted
+//   tool fil         active tool; net filament pushed since the start
+//   hot bed fan      heater targets (hot: per tool, "215,0"), fan 0..255
+//   lift liftz       a z-hop is up (0/1), the Z it lifted from
+#include <string>
+
+#include "gcode/core/machine_state.hpp"
+#include "gcode/serial/journal_record.hpp"
+
+namespace gcode::serial {
+
+void write_machine_fields(const MachineState& state, JournalFields& fields);
+
+// Fills `state` from `fields`; false (with `problem` naming the field) when
+// one is missing or does not read as its kind.
+bool read_machine_fields(const JournalFields& fields, MachineState& state, std::string& problem);
+
+}  // namespace gcode::serial
