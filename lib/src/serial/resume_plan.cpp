@@ -1,0 +1,136 @@
+#include "gcode/serial/resume_plan.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "gcode/serial/journal_point.hpp"
+
+namespace gcode::serial {
+
+namespace {
+
+std::uint64_t number_or_zero(const JournalFields& f, std::string_view key) {
+  const std::string* v = f.find(key);
+  if (v == nullptr || v->empty() || v->find_first_not_of("0123456789") != std::string::npos) return 0;
+  return std::stoull(*v);
+}
+
+// Fills the plan's state and input position from entry `i`; false with a
+// refusal when the entry's fields do not read.
+bool take_entry(const JournalContents& journal, std::size_t i, ResumePlan& plan) {
+  const JournalFields& point = journal.entries[i].point;
+  std::string problem;
+  if (!read_machine_fields(point, plan.state, problem)) {
+    plan.refusal = fmt::format("the journal's record of line {} is incomplete: {}", journal.entries[i].n, problem);
+    return false;
+  }
+  plan.entry = i;
+  plan.input_line = number_or_zero(point, "line");
+  plan.input_offset = number_or_zero(point, "off");
+  plan.layer = static_cast<int>(number_or_zero(point, "layer"));
+  plan.paused = point.get("paused") == "1";
+  return true;
+}
+
+// The index of the entry sent as line n, or npos.
+std::size_t index_of(const JournalContents& journal, std::uint64_t n) {
+  for (std::size_t i = journal.entries.size(); i-- > 0;)
+    if (journal.entries[i].n == n) return i;
+  return std::string::npos;
+}
+
+std::string position_mismatch(const PositionReport& report, const MachineState& state, double tolerance) {
+  static constexpr char kAxes[] = {'X', 'Y', 'Z'};
+  for (int a = 0; a < 3; ++a) {
+    double was = state.at(a).to_double();
+    double is = report.axis[static_cast<std::size_t>(a)];
+    if (std::abs(was - is) > tolerance)
+      return fmt::format("the printer is at {} {:.3f}, the journal says {:.3f} after that line: it did not keep its "
+                         "state (was it reset, or moved by hand?)",
+                         kAxes[a], is, was);
+  }
+  return std::string();
+}
+
+ResumePlan after_keep_running(const JournalContents& journal, const PrinterFindings& printer,
+                              const ResumeLimits& limits, ResumePlan plan) {
+  if (printer.expected_line < 1) {
+    plan.refusal = "the printer did not say which line it expects next";
+    return plan;
+  }
+  auto last_run = static_cast<std::uint64_t>(printer.expected_line - 1);
+  std::size_t i = index_of(journal, last_run);
+  if (i == std::string::npos) {
+    plan.refusal = fmt::format("the printer took line {} last, which the journal does not hold (lines {} to {})",
+                               last_run, journal.entries.front().n, journal.entries.back().n);
+    return plan;
+  }
+  if (!take_entry(journal, i, plan)) return plan;
+  if (printer.position) {
+    plan.refusal = position_mismatch(*printer.position, plan.state, limits.position_tolerance);
+    if (!plan.refusal.empty()) return plan;
+  }
+  plan.possible = true;
+  return plan;
+}
+
+bool is_move(const MachineState& before, const MachineState& after) {
+  return before.exact != after.exact;
+}
+
+double distance(const MachineState& a, const MachineState& b) {
+  double dx = a.position[kX] - b.position[kX], dy = a.position[kY] - b.position[kY],
+         dz = a.position[kZ] - b.position[kZ];
+  return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+ResumePlan after_reset(const JournalContents& journal, const ResumeLimits& limits, ResumePlan plan) {
+  if (!limits.can_home_xy_alone) {
+    plan.refusal = "this printer cannot home X and Y without Z (a delta): a part stands on the bed";
+    return plan;
+  }
+  std::size_t acked = journal.acknowledged > 0 ? index_of(journal, journal.acknowledged) : std::string::npos;
+  if (acked == std::string::npos) acked = journal.entries.size() - 1;
+  // Walk back over the newest planner_blocks acknowledged moves: the last
+  // one that surely ran is the entry before the oldest of them.
+  std::size_t i = acked;
+  if (!take_entry(journal, i, plan)) return plan;
+  MachineState after = plan.state, before;
+  std::string problem;
+  int moves = 0;
+  double mm = 0;
+  while (i > 0 && moves < limits.planner_blocks) {
+    if (!read_machine_fields(journal.entries[i - 1].point, before, problem)) break;
+    if (is_move(before, after)) {
+      ++moves;
+      mm += distance(before, after);
+    }
+    after = before;
+    --i;
+  }
+  if (!take_entry(journal, i, plan)) return plan;
+  plan.redone_moves = moves;
+  plan.redone_mm = mm;
+  plan.possible = true;
+  return plan;
+}
+
+}  // namespace
+
+ResumePlan plan_resume(const JournalContents& journal, const PrinterFindings& printer, const ResumeLimits& limits) {
+  ResumePlan plan;
+  plan.condition = printer.condition;
+  if (journal.finished) {
+    plan.refusal = "the journal's print ended normally: nothing to resume";
+    return plan;
+  }
+  if (journal.entries.empty()) {
+    plan.refusal = "the journal holds no command: the print had not begun (start it again)";
+    return plan;
+  }
+  if (printer.condition == PrinterCondition::KeptRunning) return after_keep_running(journal, printer, limits, plan);
+  return after_reset(journal, limits, plan);
+}
+
+}  // namespace gcode::serial

@@ -1,0 +1,125 @@
+// Where a print goes on after a fault (gcode/serial/resume_plan.hpp), on
+// the journal of a real print: a printer that kept running goes on right
+// after the line before the one it expects, once its position agrees; a
+// printer that reset goes back over the moves its planner may have lost.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "gcode/core/line.hpp"
+#include "gcode/serial/journal_point.hpp"
+#include "gcode/serial/resume_plan.hpp"
+#include "test_support.hpp"
+
+using namespace gcode;
+using namespace gcode::serial;
+
+namespace {
+
+struct Print {
+  JournalContents journal;
+  std::vector<MachineState> states;  // after command i+1
+};
+
+// The journal a print of the fixture leaves: one entry per command, its
+// input line and offset, acknowledged up to `acked`.
+Print print_of(const std::string& fixture, std::uint64_t acked) {
+  Print p;
+  std::string text = gctest::read_file(gctest::fixture_path(fixture));
+  MachineState state = gctest::initial_state(text);
+  std::uint64_t line_no = 0, offset = 0;
+  for (const std::string& raw : gctest::split_lines(text)) {
+    ++line_no;
+    offset += raw.size();
+    std::string_view code = raw;
+    while (!code.empty() && (code.back() == '\n' || code.back() == '\r')) code.remove_suffix(1);
+    Line line = Line::parse(code);
+    if (line.kind == CommandKind::None) continue;
+    state.apply(line);
+    JournalEntry e;
+    e.n = p.states.size() + 1;
+    write_machine_fields(state, e.point);
+    e.point.set("line", std::to_string(line_no));
+    e.point.set("off", std::to_string(offset));
+    p.journal.entries.push_back(std::move(e));
+    p.states.push_back(state);
+  }
+  p.journal.acknowledged = acked;
+  return p;
+}
+
+PositionReport at(const MachineState& s, double dx = 0) {
+  PositionReport r;
+  for (int a = 0; a < 4; ++a) {
+    r.axis[static_cast<std::size_t>(a)] = s.at(a).to_double() + (a == 0 ? dx : 0);
+    r.present[static_cast<std::size_t>(a)] = true;
+  }
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("resume plan: a printer that kept running goes on after its last line", "[serial][journal]") {
+  Print p = print_of("prusa_cube_0.2_mk3s_rel_zhop.gcode", 3000);
+  PrinterFindings kept{PrinterCondition::KeptRunning, 3001, at(p.states[2999])};
+  ResumePlan plan = plan_resume(p.journal, kept, {});
+  REQUIRE(plan.possible);
+  CHECK(plan.entry == 2999);
+  CHECK(same_machine(plan.state, p.states[2999]));
+  CHECK(plan.input_line == std::stoull(p.journal.entries[2999].point.get("line")));
+  CHECK(plan.input_offset == std::stoull(p.journal.entries[2999].point.get("off")));
+  CHECK(plan.redone_mm == 0);
+
+  // Lines sent but not acknowledged before the kill still ran: the printer says so.
+  PrinterFindings further{PrinterCondition::KeptRunning, 3006, at(p.states[3004])};
+  ResumePlan later = plan_resume(p.journal, further, {});
+  REQUIRE(later.possible);
+  CHECK(later.entry == 3004);
+
+  PrinterFindings moved{PrinterCondition::KeptRunning, 3001, at(p.states[2999], 0.05)};
+  ResumePlan refused = plan_resume(p.journal, moved, {});
+  CHECK_FALSE(refused.possible);
+  CHECK(refused.refusal.find("the printer is at X") == 0);
+
+  PrinterFindings unknown{PrinterCondition::KeptRunning, 999999, std::nullopt};
+  CHECK(plan_resume(p.journal, unknown, {}).refusal.find("does not hold") != std::string::npos);
+}
+
+TEST_CASE("resume plan: after a reset, back over the moves the planner may have lost", "[serial][journal]") {
+  Print p = print_of("prusa_cube_0.2_mk3s_rel_zhop.gcode", 5000);
+  ResumeLimits limits;
+  limits.planner_blocks = 16;
+  ResumePlan plan = plan_resume(p.journal, {PrinterCondition::Reset, -1, std::nullopt}, limits);
+  REQUIRE(plan.possible);
+  CHECK(plan.redone_moves == 16);
+  CHECK(plan.entry < 4999);
+  // Exactly the moves between the plan's state and the acknowledged line.
+  int moves = 0;
+  double mm = 0;
+  for (std::size_t i = plan.entry; i < 4999; ++i) {
+    const MachineState& a = p.states[i];
+    const MachineState& b = p.states[i + 1];
+    if (a.exact == b.exact) continue;
+    ++moves;
+    mm += std::hypot(b.position[kX] - a.position[kX], b.position[kY] - a.position[kY], b.position[kZ] - a.position[kZ]);
+  }
+  CHECK(moves == 16);
+  CHECK(plan.redone_mm == Approx(mm));
+  CHECK(plan.redone_mm > 0);
+  CHECK(same_machine(plan.state, p.states[plan.entry]));
+
+  limits.can_home_xy_alone = false;
+  ResumePlan delta = plan_resume(p.journal, {PrinterCondition::Reset, -1, std::nullopt}, limits);
+  CHECK_FALSE(delta.possible);
+  CHECK(delta.refusal.find("cannot home X and Y") != std::string::npos);
+}
+
+TEST_CASE("resume plan: a finished or empty journal has nothing to resume", "[serial][journal]") {
+  Print p = print_of("prusa_cube_0.2_mk3s_rel_zhop.gcode", 100);
+  p.journal.finished = true;
+  CHECK(plan_resume(p.journal, {}, {}).refusal.find("ended normally") != std::string::npos);
+  JournalContents empty;
+  CHECK(plan_resume(empty, {}, {}).refusal.find("had not begun") != std::string::npos);
+}
