@@ -143,3 +143,36 @@ TEST_CASE("flow control: advanced-ok learns the queue from B, auto switches on i
   CHECK(parse_flow_mode("window") == FlowMode::Window);
   CHECK_FALSE(parse_flow_mode("fast").has_value());
 }
+
+TEST_CASE("protocol: what each line of the answer to M115 says", "[serial][protocol]") {
+  FirmwareInfo info;
+  CapabilityLine said = read_capability(
+      "FIRMWARE_NAME:Marlin 2.1.2 (gc-virtual-printer) SOURCE_CODE_URL:github.com/MarlinFirmware/Marlin "
+      "PROTOCOL_VERSION:1.0 MACHINE_TYPE:Virtual EXTRUDER_COUNT:1 TIME_SCALE:20 BAUD:250000",
+      info);
+  CHECK(said.names_firmware);
+  CHECK_FALSE(said.max_line);
+  CHECK(info.name == "Marlin 2.1.2 (gc-virtual-printer)");
+  CHECK(info.time_scale == 20);
+  CHECK(info.baud == 250000);
+  CHECK_FALSE(read_capability("Cap:ADVANCED_OK:0", info).names_firmware);
+  CHECK_FALSE(info.advanced_ok);
+  read_capability("Cap:ADVANCED_OK:1", info);
+  read_capability("Cap:EMERGENCY_PARSER:1", info);
+  read_capability("Cap:AUTOREPORT_TEMP:1", info);
+  CHECK(info.advanced_ok);
+  CHECK(info.emergency_parser);
+  CHECK(info.autoreport_temp);
+  CHECK_FALSE(info.busy_protocol);
+  read_capability("Cap:HOST_ACTION_COMMANDS:1", info);
+  CHECK(info.busy_protocol);
+  CHECK(read_capability("Cap:MAX_CMD_SIZE:96", info).max_line);
+  CHECK(info.max_line == 96);
+  CHECK_FALSE(read_capability("Cap:MAX_CMD_SIZE:8", info).max_line);  // too small to be true
+  CHECK(info.max_line == 96);
+  FirmwareInfo real;
+  read_capability("FIRMWARE_NAME:Marlin bugfix-2.1.x (Jan 1 2024) SOURCE_CODE_URL:github.com/MarlinFirmware/Marlin", real);
+  CHECK(real.name == "Marlin bugfix-2.1.x (Jan 1 2024)");
+  CHECK(real.time_scale == 0);  // a real firmware names neither
+  CHECK(real.baud == 0);
+}

@@ -1,6 +1,8 @@
 #include "gcode/serial/protocol.hpp"
 
 #include <charconv>
+#include <cstdlib>
+#include <string>
 
 namespace gcode::serial {
 
@@ -220,6 +222,39 @@ std::string_view command_for_sending(const Line& line, std::string& scratch) {
     }
   }
   return command_for_sending(scratch);
+}
+
+CapabilityLine read_capability(std::string_view text, FirmwareInfo& info) {
+  CapabilityLine said;
+  auto cap = [&](std::string_view name) {
+    std::string key = "Cap:" + std::string(name) + ":1";
+    return text.find(key) != std::string_view::npos;
+  };
+  if (text.rfind("FIRMWARE_NAME:", 0) == 0) {
+    said.names_firmware = true;
+    std::size_t end = text.find(" SOURCE_CODE_URL");
+    info.name = std::string(text.substr(14, end == std::string_view::npos ? std::string_view::npos : end - 14));
+    auto number_after = [&](std::string_view key) {
+      std::size_t p = text.find(key);
+      if (p == std::string_view::npos) return 0.0;
+      return std::atof(std::string(text.substr(p + key.size(), 24)).c_str());
+    };
+    info.time_scale = number_after("TIME_SCALE:");
+    info.baud = number_after("BAUD:");
+  }
+  constexpr std::string_view kMaxCmd = "Cap:MAX_CMD_SIZE:";
+  if (text.rfind(kMaxCmd, 0) == 0) {
+    long long size = std::atoll(std::string(text.substr(kMaxCmd.size(), 12)).c_str());
+    if (size >= 16) {
+      info.max_line = static_cast<std::size_t>(size);
+      said.max_line = true;
+    }
+  }
+  if (cap("ADVANCED_OK")) info.advanced_ok = true;
+  if (cap("EMERGENCY_PARSER")) info.emergency_parser = true;
+  if (cap("AUTOREPORT_TEMP")) info.autoreport_temp = true;
+  if (cap("BUSY_PROTOCOL") || cap("HOST_ACTION_COMMANDS")) info.busy_protocol = true;
+  return said;
 }
 
 }  // namespace gcode::serial

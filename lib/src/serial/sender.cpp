@@ -190,13 +190,7 @@ void Sender::pump(double now) {
 
 void Sender::push_flight(long long number, std::size_t bytes, bool temperature_query) {
   out_total_ += bytes;
-  flight_.push_back({number, static_cast<std::uint32_t>(bytes), temperature_query, out_total_, kNever});
-  flight_bytes_ += bytes;
-}
-
-std::size_t Sender::flight_lines() const {
-  return static_cast<std::size_t>(
-      std::count_if(flight_.begin(), flight_.end(), [](const Flight& f) { return f.number >= 0; }));
+  flight_.push(number, bytes, temperature_query, out_total_);
 }
 
 void Sender::send_unnumbered(std::string_view command, bool temperature_query, bool track) {
@@ -220,32 +214,26 @@ void Sender::written(std::size_t n, double now) {
   if (n == 0) return;
   written_total_ += n;
   clock_.written(n, now);
-  for (Flight& f : flight_) {
-    if (f.end > written_total_) break;
-    if (f.arrival == kNever) f.arrival = clock_.arrival_of(static_cast<std::size_t>(written_total_ - f.end));
-  }
-  if (settling_) settle_from_ = std::max(settle_from_, now);
+  flight_.written(written_total_, [this](std::size_t after) { return clock_.arrival_of(after); });
+  resend_.heard(now);
 }
-
-bool Sender::lines_in_flight() const { return flight_lines() > 0; }
 
 bool Sender::settled(double now) const {
   // An M105 of ours still unanswered once every line is acknowledged was
   // lost: the printer runs it as soon as it reaches the head of its queue.
-  return output().empty() && !lines_in_flight() && now >= settle_from_ + settle_quiet_ &&
-         now >= last_any_rx_ + settle_quiet_;
+  return output().empty() && !lines_in_flight() && resend_.quiet(now, last_any_rx_);
 }
 
 void Sender::fill(double now) {
-  pace_wait_ = kNever;
+  pacer_.clear_wake();
   if (state_ != SenderState::Printing || paused_ || cancelled_) return;
-  if (settling_) {
+  if (resend_.settling()) {
     if (!settled(now)) return;
-    settling_ = false;
+    resend_.settled();
   }
   // Room is kept in the printer's buffer for an M105, which goes out
   // whenever an answer is overdue.
-  std::size_t reserve = probing() ? 0 : kProbe.size() + 1;
+  std::size_t reserve = flight_.asking() ? 0 : kProbe.size() + 1;
   for (;;) {
     if (input_done_ && !final_queued_ && next_send_ == next_number_ && config_.finish_with_m400 && next_number_ > 1) {
       final_queued_ = true;
@@ -255,7 +243,7 @@ void Sender::fill(double now) {
     const Slot& s = slot(next_send_);
     // Our M105s hold bytes of the printer's buffer but no place in its
     // queue for long: it answers them as soon as they are read.
-    if (!flow_.may_send(flight_lines(), flight_bytes_ + reserve, s.wire.size())) break;
+    if (!flow_.may_send(flight_.lines(), flight_.bytes() + reserve, s.wire.size())) break;
     if (config_.pace && s.move && paced(now)) break;
     out_ += s.wire;
     if (trace_)
@@ -270,7 +258,7 @@ void Sender::fill(double now) {
     } else {
       ++stats_.resent_lines;
     }
-    if (flight_lines() == 1) last_rx_ = std::max(last_rx_, now);  // the timeout runs from the first line in flight
+    if (flight_.lines() == 1) last_rx_ = std::max(last_rx_, now);  // the timeout runs from the first line in flight
     ++next_send_;
   }
   check_done(now);
@@ -279,7 +267,7 @@ void Sender::fill(double now) {
 void Sender::check_done(double now) {
   // Done when every line is acknowledged (an M105 of ours may still be out).
   if (state_ == SenderState::Printing && input_done_ && (final_queued_ || !config_.finish_with_m400) &&
-      next_send_ == next_number_ && !lines_in_flight() && !settling_ && next_number_ > 1) {
+      next_send_ == next_number_ && !lines_in_flight() && !resend_.settling() && next_number_ > 1) {
     if (refusal_.empty()) {
       state_ = SenderState::Done;
     } else {
@@ -291,9 +279,7 @@ void Sender::check_done(double now) {
 }
 
 void Sender::acknowledge_front(double now) {
-  const Flight f = flight_.front();
-  flight_.pop_front();
-  flight_bytes_ -= f.bytes;
+  const InFlight::Entry f = flight_.pop_front();
   if (f.number < 0) {
     clock_.answered(0, now);
     return;
@@ -326,84 +312,45 @@ void Sender::on_ok(const Response& r, double now) {
     learnt_planner_ = r.planner_free;
     clock_.set_planner_blocks(learnt_planner_);
   }
-  if (state_ == SenderState::Handshake) {
-    state_ = SenderState::Capabilities;
-    handshake_retry_ = now;
-    send_unnumbered("M115", false, false);
-    return;
-  }
-  if (state_ == SenderState::Capabilities) {
-    // The answer to M115, or a late answer to a repeated M110 (one sent
-    // after the greeting of a board that was still booting). Printing starts
-    // once the link has been quiet for a moment, so no such extra "ok" can
-    // be taken for the first line's.
-    if (caps_answered_) ++stats_.stray_oks;
-    caps_answered_ = true;
-    return;
-  }
-  if (expect_error_ok_) {
-    // Marlin answers a rejected line with Error, Resend and "ok": that ok
-    // belongs to the rejected line, which already left the flight list.
-    expect_error_ok_ = false;
-    return;
-  }
-  probes_in_row_ = 0;
-  next_probe_ = 0;
+  if (answers_handshake(now)) return;
+  // Marlin answers a rejected line with Error, Resend and "ok": that ok
+  // belongs to the rejected line, which already left the flight list.
+  if (resend_.take_rejected_ok()) return;
+  probes_.answered();
   idle_hint_ = false;
-  if (flight_.empty()) {
-    ++stats_.stray_oks;
-  } else if (r.has_temperature) {
-    // The answer to M105 (ours or one in the file): Marlin runs commands in
-    // order, so every line sent before it is done. With no M105 in flight it
-    // answers a question already written off: it frees nothing.
-    auto it = std::find_if(flight_.begin(), flight_.end(), [](const Flight& f) { return f.temperature_query; });
-    if (it == flight_.end()) {
-      ++stats_.stray_oks;
-    } else {
-      // Our own M105s right behind it go too: the answer may be any of
-      // theirs (an earlier one's got lost), and a question left behind would
-      // wait for an answer already taken.
-      auto last = it;
-      while (last + 1 != flight_.end() && (last + 1)->number < 0) ++last;
-      acknowledge_through(static_cast<std::size_t>(last - flight_.begin()), now);
-    }
-  } else if (flow_.ok_numbers_acknowledge()) {
-    // ADVANCED_OK: "ok N<n>" answers line n, so everything sent before it is
-    // done too (an M105 of ours among them lost its answer). An ok without N
-    // answers an unnumbered command: our M105 (turned into something else on
-    // the way) if it is next, else nothing we know of.
-    bool answered = false;
-    if (r.line >= 0) {
-      std::size_t last = flight_.size();
-      for (std::size_t i = 0; i < flight_.size(); ++i)
-        if (flight_[i].number >= 0 && flight_[i].number <= r.line) last = i;
-      answered = last < flight_.size();
-      if (answered) acknowledge_through(last, now);
-    } else {
-      auto it = std::find_if(flight_.begin(), flight_.end(), [](const Flight& f) { return f.number < 0; });
-      answered = it != flight_.end();
-      if (answered) {
-        // Taken for our M105 (garbled into another command), which frees
-        // nothing else: the lines before it have oks with numbers.
-        flight_bytes_ -= it->bytes;
-        flight_.erase(it);
-        clock_.answered(0, now);
-      }
-    }
-    if (!answered) ++stats_.stray_oks;
-  } else {
-    // A plain ok answers the oldest line. If that is our M105, whose answer
-    // carries temperatures, the M105 went wrong on the way (an unknown
-    // command) or its answer was lost; either way it is gone, and taking
-    // this ok for it frees the least.
-    acknowledge_front(now);
+  const InFlight::Answer answer = flight_.answer_to(r, flow_.ok_numbers_acknowledge());
+  switch (answer.kind) {
+    case InFlight::Answer::Kind::Stray: ++stats_.stray_oks; break;
+    case InFlight::Answer::Kind::Through: acknowledge_through(answer.index, now); break;
+    case InFlight::Answer::Kind::Question:
+      flight_.erase(answer.index);
+      clock_.answered(0, now);
+      break;
   }
   if (flight_.empty() && stats_.print_start >= 0) stats_.print_end = now;
   fill(now);
 }
 
+// An "ok" during the handshake: M110's (then M115 goes out), or M115's.
+bool Sender::answers_handshake(double now) {
+  if (state_ == SenderState::Handshake) {
+    state_ = SenderState::Capabilities;
+    handshake_retry_ = now;
+    send_unnumbered("M115", false, false);
+    return true;
+  }
+  if (state_ != SenderState::Capabilities) return false;
+  // The answer to M115, or a late answer to a repeated M110 (one sent
+  // after the greeting of a board that was still booting). Printing starts
+  // once the link has been quiet for a moment, so no such extra "ok" can
+  // be taken for the first line's.
+  if (caps_answered_) ++stats_.stray_oks;
+  caps_answered_ = true;
+  return true;
+}
+
 void Sender::on_resend(long long n, double now) {
-  expect_error_ok_ = true;
+  resend_.expect_rejected_ok();
   idle_hint_ = false;
   if (state_ != SenderState::Printing) return;
   if (n < 1 || n > highest_sent_ + 1 || n > next_number_) {
@@ -416,41 +363,25 @@ void Sender::on_resend(long long n, double now) {
                      highest_sent_));
     return;
   }
-  if (settling_ && n == settle_line_) {
-    // Line n is already being resent: this is a line that was on the wire
-    // behind the bad one and failed too (Marlin empties its buffer after an
-    // error, so each such line draws its own Error, Resend and ok).
-    ++stats_.duplicate_resends;
-    return;
-  }
-  if (n == resend_line_) {
-    if (++resend_count_ > config_.max_resends) {
-      fail(fmt::format("the printer asked for line {} {} times; giving up", n, resend_count_));
+  switch (resend_.request(n, config_.max_resends)) {
+    case ResendState::Verdict::Repeat: ++stats_.duplicate_resends; return;
+    case ResendState::Verdict::TooMany:
+      fail(fmt::format("the printer asked for line {} {} times; giving up", n, resend_.count()));
       return;
-    }
-  } else {
-    resend_line_ = n;
-    resend_count_ = 1;
+    case ResendState::Verdict::Rewind: break;
   }
   ++stats_.resend_requests;
   // "Resend: n" says the printer has every line before n and nothing after:
   // whatever of ours follows line n-1 in the flight list (lines from n on
   // and any M105 sent after them) is lost or will be rejected.
-  auto first = std::find_if(flight_.begin(), flight_.end(), [n](const Flight& f) { return f.number >= n; });
-  std::size_t stale_bytes = 0;
-  for (auto it = first; it != flight_.end(); ++it) stale_bytes += it->bytes;
-  flight_bytes_ -= stale_bytes;
-  flight_.erase(first, flight_.end());
+  const std::size_t stale_bytes = flight_.drop_from(n);
   next_send_ = n;
   // Wait until every line before n is acknowledged (the printer's queue is
   // then empty and it reads each arriving byte at once) and the link has
   // been quiet long enough for the stale lines to reach it and be rejected;
   // their requests for n are repeats, and their rejections would empty the
   // printer's buffer again, taking an early copy of line n with it.
-  settling_ = true;
-  settle_line_ = n;
-  settle_from_ = now;
-  settle_quiet_ = clock_.quiet(stale_bytes + output().size());
+  resend_.rewound(n, now, clock_.quiet(stale_bytes + output().size()));
   log(LogLevel::Info, slot(n).source_line, fmt::format("resend from {}", describe({n, slot(n).source_line, slot(n).layer})));
 }
 
@@ -461,57 +392,30 @@ void Sender::set_link(double bytes_per_second, double time_scale) {
 }
 
 void Sender::on_capability(std::string_view text) {
-  auto cap = [&](std::string_view name) {
-    std::string key = fmt::format("Cap:{}:1", name);
-    return text.find(key) != std::string_view::npos;
-  };
-  if (text.rfind("FIRMWARE_NAME:", 0) == 0) {
-    std::size_t end = text.find(" SOURCE_CODE_URL");
-    firmware_.name = std::string(text.substr(14, end == std::string_view::npos ? std::string_view::npos : end - 14));
-    auto number_after = [&](std::string_view key) {
-      std::size_t p = text.find(key);
-      if (p == std::string_view::npos) return 0.0;
-      return std::atof(std::string(text.substr(p + key.size(), 24)).c_str());
-    };
-    firmware_.time_scale = number_after("TIME_SCALE:");
-    firmware_.baud = number_after("BAUD:");
-    // A simulated printer's link runs at its own pace, not the port's.
-    if (firmware_.time_scale > 0 && firmware_.baud > 0)
-      set_link(firmware_.baud / 10 * firmware_.time_scale, firmware_.time_scale);
-  }
-  constexpr std::string_view kMaxCmd = "Cap:MAX_CMD_SIZE:";
-  // Only from the handshake: lines already checked must stay valid.
-  if (text.rfind(kMaxCmd, 0) == 0 && state_ != SenderState::Printing) {
-    long long size = std::atoll(std::string(text.substr(kMaxCmd.size(), 12)).c_str());
-    if (size >= 16) {
-      firmware_.max_line = static_cast<std::size_t>(size);
-      if (config_.max_line_from_firmware) config_.max_line = firmware_.max_line;
+  const std::size_t max_line = firmware_.max_line;
+  const CapabilityLine said = read_capability(text, firmware_);
+  // A simulated printer's link runs at its own pace, not the port's.
+  if (said.names_firmware && firmware_.time_scale > 0 && firmware_.baud > 0)
+    set_link(firmware_.baud / 10 * firmware_.time_scale, firmware_.time_scale);
+  if (said.max_line) {
+    // Only from the handshake: lines already checked must stay valid.
+    if (state_ == SenderState::Printing) {
+      firmware_.max_line = max_line;
+    } else if (config_.max_line_from_firmware) {
+      config_.max_line = firmware_.max_line;
     }
   }
-  if (cap("ADVANCED_OK")) {
-    firmware_.advanced_ok = true;
-    flow_.firmware_has_advanced_ok();
-  }
-  if (cap("EMERGENCY_PARSER")) firmware_.emergency_parser = true;
-  if (cap("AUTOREPORT_TEMP")) firmware_.autoreport_temp = true;
-  if (cap("BUSY_PROTOCOL") || cap("HOST_ACTION_COMMANDS")) firmware_.busy_protocol = true;
+  if (firmware_.advanced_ok) flow_.firmware_has_advanced_ok();
 }
 
 void Sender::on_line(std::string_view text, double now) {
   if (trace_) log(LogLevel::Trace, 0, fmt::format("<- {} @{:.6f}", text, now));
   last_any_rx_ = now;
-  if (settling_) settle_from_ = std::max(settle_from_, now);
+  resend_.heard(now);
   Response r = parse_response(text);
-  if ((r.kind == ResponseKind::Temperature || r.has_temperature) && text.find_first_of("TB") != std::string_view::npos) {
-    std::string_view t = text.substr(text.find_first_of("TB"));
-    temperatures_.assign(t.substr(0, t.find(" @")));  // without the heater powers
-    for (char& c : temperatures_)
-      if (c == '"' || c == '\\' || static_cast<unsigned char>(c) < 0x20) c = ' ';  // kept JSON-safe
-  }
-  // The "ok" of a rejected line comes right after its "Resend:"; anything
-  // else in between means that ok was lost (or the firmware sends none).
+  note_temperatures(r, text);
   if (r.kind != ResponseKind::Ok && r.kind != ResponseKind::Resend && r.kind != ResponseKind::Empty)
-    expect_error_ok_ = false;
+    resend_.other_answer();
   switch (r.kind) {
     case ResponseKind::Empty: break;
     case ResponseKind::Ok: on_ok(r, now); break;
@@ -520,17 +424,7 @@ void Sender::on_line(std::string_view text, double now) {
       timeouts_in_row_ = 0;
       on_resend(r.line, now);
       break;
-    case ResponseKind::Error:
-      ++stats_.errors;
-      last_rx_ = now;
-      if (r.error == ErrorClass::Fatal) {
-        fail(fmt::format("the printer reported a fatal error: {}; last acknowledged: {}", r.text, describe(last_acked_)));
-      } else if (r.error == ErrorClass::Recoverable) {
-        log(LogLevel::Warning, 0, fmt::format("printer: Error:{}", r.text));
-      } else {
-        log(LogLevel::Info, 0, fmt::format("printer: Error:{}", r.text));
-      }
-      break;
+    case ResponseKind::Error: on_error(r, now); break;
     case ResponseKind::Busy:
       ++stats_.busy;
       timeouts_in_row_ = 0;
@@ -538,37 +432,17 @@ void Sender::on_line(std::string_view text, double now) {
       last_busy_ = now;
       clock_.keepalive(now);
       break;
-    case ResponseKind::Action:
-      log(LogLevel::Warning, 0, fmt::format("printer action: {}", r.text));
-      if (on_action_) {
-        on_action_(r.text);
-        break;
-      }
-      if (r.text.rfind("pause", 0) == 0 && r.text.rfind("paused", 0) != 0) paused_ = true;
-      if (r.text.rfind("resume", 0) == 0 && r.text.rfind("resumed", 0) != 0) paused_ = false;
-      if (r.text.rfind("cancel", 0) == 0) cancel();
-      break;
+    case ResponseKind::Action: on_action(r.text); break;
     case ResponseKind::Temperature:
       // Heating waits (M109/M190) report temperatures instead of "busy".
-      if (std::any_of(flight_.begin(), flight_.end(),
-                      [this](const Flight& f) { return f.number > 0 && slot(f.number).long_running; })) {
+      if (long_command_in_flight()) {
         last_rx_ = now;
         clock_.keepalive(now);
       }
       break;
-    case ResponseKind::Capability:
-      on_capability(r.text);
-      break;
-    case ResponseKind::Start:
-      if (state_ == SenderState::Handshake) {
-        send_unnumbered("M110 N0", false, false);
-      } else if (state_ == SenderState::Printing) {
-        fail("the printer restarted (it said \"start\")");
-      }
-      break;
-    case ResponseKind::Echo:
-      log(LogLevel::Info, 0, fmt::format("printer: {}", r.text));
-      break;
+    case ResponseKind::Capability: on_capability(r.text); break;
+    case ResponseKind::Start: on_start(); break;
+    case ResponseKind::Echo: log(LogLevel::Info, 0, fmt::format("printer: {}", r.text)); break;
     case ResponseKind::Wait:
       // Marlin (NO_TIMEOUTS) and Repetier say "wait" when their queue and
       // buffer are empty: a line still believed in flight lost its answer.
@@ -583,46 +457,71 @@ void Sender::on_line(std::string_view text, double now) {
   check_done(now);
 }
 
+// The last temperature report, for the progress ("T:205.00 /205.00 B:60.00 /60.00").
+void Sender::note_temperatures(const Response& r, std::string_view text) {
+  if (!(r.kind == ResponseKind::Temperature || r.has_temperature) || text.find_first_of("TB") == std::string_view::npos)
+    return;
+  std::string_view t = text.substr(text.find_first_of("TB"));
+  temperatures_.assign(t.substr(0, t.find(" @")));  // without the heater powers
+  for (char& c : temperatures_)
+    if (c == '"' || c == '\\' || static_cast<unsigned char>(c) < 0x20) c = ' ';  // kept JSON-safe
+}
+
+void Sender::on_error(const Response& r, double now) {
+  ++stats_.errors;
+  last_rx_ = now;
+  if (r.error == ErrorClass::Fatal) {
+    fail(fmt::format("the printer reported a fatal error: {}; last acknowledged: {}", r.text, describe(last_acked_)));
+  } else {
+    log(r.error == ErrorClass::Recoverable ? LogLevel::Warning : LogLevel::Info, 0,
+        fmt::format("printer: Error:{}", r.text));
+  }
+}
+
+// The printer's //action: (its own pause button, with host actions). Without
+// a handler a pause holds sending until the resume.
+void Sender::on_action(std::string_view action) {
+  log(LogLevel::Warning, 0, fmt::format("printer action: {}", action));
+  if (on_action_) {
+    on_action_(action);
+    return;
+  }
+  if (action.rfind("pause", 0) == 0 && action.rfind("paused", 0) != 0) paused_ = true;
+  if (action.rfind("resume", 0) == 0 && action.rfind("resumed", 0) != 0) paused_ = false;
+  if (action.rfind("cancel", 0) == 0) cancel();
+}
+
+// The greeting after a reset: during the handshake, a board that was still
+// booting; while printing, the print is lost.
+void Sender::on_start() {
+  if (state_ == SenderState::Handshake) {
+    send_unnumbered("M110 N0", false, false);
+  } else if (state_ == SenderState::Printing) {
+    fail("the printer restarted (it said \"start\")");
+  }
+}
+
+bool Sender::long_command_in_flight() const {
+  return std::any_of(flight_.begin(), flight_.end(),
+                     [this](const InFlight::Entry& f) { return f.number > 0 && slot(f.number).long_running; });
+}
+
 double Sender::current_timeout() const {
   double t = config_.timeout;
-  bool long_running = false;
-  for (const Flight& f : flight_)
-    if (f.number > 0 && slot(f.number).long_running) long_running = true;
-  if (long_running) t *= 6;
+  if (long_command_in_flight()) t *= 6;
   if (last_rx_ - last_busy_ < config_.timeout) t *= 2;  // a busy firmware gets more time
   return t;
 }
 
 bool Sender::paced(double now) {
   int moves = 0;
-  for (const Flight& f : flight_)
+  for (const InFlight::Entry& f : flight_)
     if (f.number > 0 && slot(f.number).move) ++moves;
-  std::size_t blocks = std::min(pace_ends_.size(), static_cast<std::size_t>(std::max(1, clock_.planner_blocks())));
-  int ahead = 0;
-  double first_end = kNever;
-  for (std::size_t i = 0; i < blocks; ++i) {
-    if (pace_ends_[i] > now) {
-      ++ahead;
-      first_end = std::min(first_end, pace_ends_[i]);
-    }
-  }
-  bool blocked = moves + ahead >= static_cast<int>(blocks);
-  // With nothing in flight no answer will come: wake when a block ends.
-  pace_wait_ = blocked && moves == 0 ? first_end : kNever;
-  return blocked;
+  return pacer_.blocked(now, moves, clock_.planner_blocks());
 }
 
 void Sender::planned(const Slot& s, double now) {
-  if (!config_.pace || !s.move) return;
-  std::size_t blocks = std::min(pace_ends_.size(), static_cast<std::size_t>(std::max(1, clock_.planner_blocks())));
-  double scale = config_.time_scale > 0 ? config_.time_scale : 1;
-  pace_last_end_ = std::max(pace_last_end_, now) + s.nominal / scale;
-  pace_ends_[pace_next_ % blocks] = pace_last_end_;
-  pace_next_ = (pace_next_ + 1) % blocks;
-}
-
-bool Sender::probing() const {
-  return std::any_of(flight_.begin(), flight_.end(), [](const Flight& f) { return f.number < 0; });
+  if (config_.pace && s.move) pacer_.planned(s.nominal, now, clock_.planner_blocks(), config_.time_scale);
 }
 
 double Sender::overdue_at() const {
@@ -636,7 +535,7 @@ double Sender::overdue_at() const {
   std::size_t k = first;
   for (std::size_t i = first; i < flight_.size(); ++i)
     if (flight_[i].number < 0) k = i;
-  if (flight_[k].arrival == kNever) return kNever;
+  if (flight_[k].arrival == InFlight::kNotArrived) return kNever;
   AnswerClock::Wait wait;
   // (Questions before the first line are left over from before and have no
   // bearing on when it is answered.)
@@ -656,7 +555,7 @@ double Sender::overdue_at() const {
   double due = clock_.due(flight_[k].arrival, wait);
   // A question without an answer (or one that did not fit) waits twice as
   // long as the one before.
-  return std::max(due + clock_.margin() * ((1 << std::min(probes_in_row_, 10)) - 1), next_probe_);
+  return probes_.when(due, clock_.margin());
 }
 
 double Sender::deadline() const {
@@ -664,22 +563,20 @@ double Sender::deadline() const {
   if (state_ == SenderState::Capabilities && caps_answered_) return last_any_rx_ + kQuietStart;
   if (state_ == SenderState::Handshake || state_ == SenderState::Capabilities)
     return std::min(handshake_retry_ + std::min(1.0, config_.timeout / 3), handshake_start_ + config_.timeout);
-  double d = pace_wait_;
+  double d = pacer_.wake();
   // (While paused or cancelled nothing is sent again: no timer for it.)
-  if (settling_ && !lines_in_flight() && !paused_ && !cancelled_)
-    d = std::max(settle_from_, last_any_rx_) + settle_quiet_;
+  if (resend_.settling() && !lines_in_flight() && !paused_ && !cancelled_) d = resend_.quiet_at(last_any_rx_);
   if (!flight_.empty()) {
     d = std::min(d, last_rx_ + current_timeout());
-    if (idle_hint_ && !probing() && lines_in_flight()) d = std::min(d, last_any_rx_);
-    if (probes_in_row_ < kQuickProbes) d = std::min(d, overdue_at());
+    if (idle_hint_ && !flight_.asking() && lines_in_flight()) d = std::min(d, last_any_rx_);
+    if (probes_.quick()) d = std::min(d, overdue_at());
   }
   return d;
 }
 
 void Sender::probe(double now, bool silent) {
   idle_hint_ = false;
-  ++probes_in_row_;  // asked or not, the next question waits longer
-  next_probe_ = now + clock_.margin() * (1 << std::min(probes_in_row_, 10));
+  probes_.asked(now, clock_.margin());  // asked or not, the next question waits longer
   if (silent) {
     ++stats_.timeouts;
     log(LogLevel::Warning, 0, fmt::format("no answer for {:.3g} s; asking with M105", now - last_rx_));
@@ -688,7 +585,7 @@ void Sender::probe(double now, bool silent) {
   // Earlier questions stay in flight: their answers may still come, and
   // "ok T:" answers the oldest. Each goes out only if it fits into the
   // printer's buffer on top of everything believed in it.
-  if (flight_bytes_ + kProbe.size() + 1 >= static_cast<std::size_t>(flow_.rx_buffer())) return;
+  if (flight_.bytes() + kProbe.size() + 1 >= static_cast<std::size_t>(flow_.rx_buffer())) return;
   if (!silent) {
     ++stats_.probes;
     long long n = flight_.empty() ? -1 : flight_.front().number;
@@ -708,20 +605,7 @@ void Sender::on_timer(double now) {
     return;
   }
   if (state_ == SenderState::Handshake || state_ == SenderState::Capabilities) {
-    if (now >= handshake_start_ + config_.timeout) {
-      if (state_ == SenderState::Capabilities) {
-        // The firmware answered M110 but not M115: print without its capabilities.
-        state_ = SenderState::Printing;
-        fill(now);
-        return;
-      }
-      fail(fmt::format("no answer from the printer within {} s (is the baud rate right?)", config_.timeout));
-      return;
-    }
-    if (now >= handshake_retry_ + std::min(1.0, config_.timeout / 3)) {
-      handshake_retry_ = now;
-      send_unnumbered(state_ == SenderState::Handshake ? "M110 N0" : "M115", false, false);
-    }
+    handshake_timer(now);
     return;
   }
   if (!flight_.empty() && now >= last_rx_ + current_timeout()) {
@@ -733,10 +617,28 @@ void Sender::on_timer(double now) {
     }
     probe(now, true);
   } else if (lines_in_flight() &&
-             ((idle_hint_ && !probing()) || (now >= overdue_at() && probes_in_row_ < kQuickProbes))) {
+             ((idle_hint_ && !flight_.asking()) || (now >= overdue_at() && probes_.quick()))) {
     probe(now, false);
   }
   fill(now);
+}
+
+// M110 or M115 unanswered: asked again, until the timeout.
+void Sender::handshake_timer(double now) {
+  if (now >= handshake_start_ + config_.timeout) {
+    if (state_ == SenderState::Capabilities) {
+      // The firmware answered M110 but not M115: print without its capabilities.
+      state_ = SenderState::Printing;
+      fill(now);
+      return;
+    }
+    fail(fmt::format("no answer from the printer within {} s (is the baud rate right?)", config_.timeout));
+    return;
+  }
+  if (now >= handshake_retry_ + std::min(1.0, config_.timeout / 3)) {
+    handshake_retry_ = now;
+    send_unnumbered(state_ == SenderState::Handshake ? "M110 N0" : "M115", false, false);
+  }
 }
 
 void Sender::disconnected(std::string_view why) {
@@ -761,7 +663,6 @@ void Sender::emergency_stop() {
   out_.resize(out_pos_);
   out_ += "\nM112\n";
   flight_.clear();
-  flight_bytes_ = 0;
   state_ = SenderState::Cancelled;
 }
 

@@ -68,4 +68,27 @@ std::string_view command_for_sending(std::string_view code);
 // comment. `scratch` holds the text when it had to be rebuilt.
 std::string_view command_for_sending(const Line& line, std::string& scratch);
 
+// What a firmware says of itself in its answer to M115.
+struct FirmwareInfo {
+  std::string name;              // FIRMWARE_NAME
+  bool advanced_ok = false;
+  bool emergency_parser = false;
+  bool autoreport_temp = false;
+  bool busy_protocol = false;
+  double time_scale = 0;         // TIME_SCALE: a simulated printer runs this much faster
+  double baud = 0;               // BAUD: a simulated printer's link rate
+  std::size_t max_line = 0;      // Cap:MAX_CMD_SIZE (Marlin does not report it)
+};
+
+// What one line of that answer told.
+struct CapabilityLine {
+  bool names_firmware = false;   // the FIRMWARE_NAME line: name, time_scale and baud set
+  bool max_line = false;         // "Cap:MAX_CMD_SIZE:n" with a usable n (16 or more)
+};
+// Adds one line of the answer to M115 to `info`: the FIRMWARE_NAME line
+// ("FIRMWARE_NAME:Marlin 2.1.2 SOURCE_CODE_URL:... TIME_SCALE:20 BAUD:250000"),
+// or "Cap:NAME:1" lines (ADVANCED_OK, EMERGENCY_PARSER, AUTOREPORT_TEMP,
+// BUSY_PROTOCOL or HOST_ACTION_COMMANDS, MAX_CMD_SIZE).
+CapabilityLine read_capability(std::string_view text, FirmwareInfo& info);
+
 }  // namespace gcode::serial

@@ -4,58 +4,15 @@
 // decides what to send next. The event loop around it (send_session.hpp) only
 // moves bytes and time.
 //
-// What it takes care of:
-//  * handshake: "M110 N0" until the firmware answers, then "M115" for its
-//    capabilities (ADVANCED_OK, EMERGENCY_PARSER, ...);
-//  * numbering: every command goes out as "N<n> <command>*<checksum>" and
-//    stays in a history until no resend can ask for it any more;
-//  * flow control (flow_control.hpp): each "ok" frees the oldest line in
-//    flight (Marlin answers in order); with ADVANCED_OK, "ok N<n>" frees all
-//    lines up to n;
-//  * resends: "Resend: n" rewinds to line n. Marlin empties its receive
-//    buffer after a bad line, and every line still on the wire then fails
-//    too and asks for the same n again (each with its own "ok"), and each of
-//    those empties the buffer again, taking any early copy of line n with it.
-//    Stale lines wait in the buffer while a move blocks on a full planner,
-//    so silence alone proves nothing. After a rewind the sender therefore
-//    waits until every line before n is acknowledged (the queue is empty, so
-//    the firmware reads each arriving line at once) and the link has then
-//    been quiet for a few byte times; it ignores repeated requests for n
-//    meanwhile, and only then sends line n again. The "ok" after each Resend
-//    belongs to the rejected line and frees nothing;
-//  * counting answers exactly: every line in flight gets one answer, in
-//    order, and each "ok" frees what it answers for: the "ok" right after a
-//    "Resend:" belongs to the rejected line and frees nothing; "ok T:" (the
-//    answer to M105) frees every line up to that M105; with ADVANCED_OK,
-//    "ok N<n>" frees every line up to n and an "ok" without N frees none;
-//    an "ok" with nothing in flight is counted as stray. Where a stream
-//    could mean two things, the sender assumes the one that frees less: a
-//    line believed in flight costs one quick question (below), a line freed
-//    too early could overrun the printer's buffer;
-//  * lost answers: the expected "ok" is overdue when the line has crossed
-//    the link, the answer before it has come, the planner has had time to
-//    make room (answer_clock.hpp: from the moves' estimated times) and a
-//    margin has passed; then "M105" goes out at once. Marlin answers it in
-//    order with "ok T:...", which proves every earlier line was executed, so
-//    its answer acknowledges them all (the "ok" that got lost is counted as
-//    received, as OctoPrint does). At most three such questions go out in a
-//    row, each waiting twice as long as the one before and only if it fits
-//    into the printer's buffer (room for one is always kept); "ok T:"
-//    answers the oldest. Heating, homing and other waits of unknown length
-//    are overdue only when the printer's "busy:" or temperature reports
-//    stop; a printer that says "wait" (idle) is asked at once;
-//  * timeouts: no sign of life for `timeout` seconds (longer while a long
-//    command runs) also sends "M105"; after `max_timeouts` such silent
-//    rounds in a row the sender gives up, naming the last acknowledged line;
-//  * input: each command is checked before it is numbered (line_check.hpp):
-//    an over-long M117/M118 text is shortened, any other line the firmware
-//    cannot take stops the print before it (or is left out with
-//    skip_bad_lines); an input without a command is a failure, not a print;
-//  * the end: after the last line, "M400" and its "ok" (the printer is idle).
+// It does the handshake (M110 N0, M115: protocol.hpp's read_capability),
+// numbers and checksums every command and keeps a history for resends
+// (resend.hpp), counts answers exactly (in_flight.hpp: each "ok" frees what
+// it answers for), asks with M105 when an answer is overdue or the link is
+// silent (probe_backoff.hpp, answer_clock.hpp), paces moves to the planner
+// (pacer.hpp), checks each command before numbering it (line_check.hpp) and
+// ends with M400. How and why, case by case: docs/gc-send-sender.md.
 #include <cstdint>
 #include <algorithm>
-#include <array>
-#include <deque>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -65,8 +22,12 @@
 #include "gcode/report/estimator.hpp"
 #include "gcode/serial/answer_clock.hpp"
 #include "gcode/serial/flow_control.hpp"
+#include "gcode/serial/in_flight.hpp"
 #include "gcode/serial/line_check.hpp"
+#include "gcode/serial/pacer.hpp"
+#include "gcode/serial/probe_backoff.hpp"
 #include "gcode/serial/protocol.hpp"
+#include "gcode/serial/resend.hpp"
 
 namespace gcode::serial {
 
@@ -85,14 +46,9 @@ struct SenderConfig {
   bool skip_bad_lines = false;             // leave out lines the firmware cannot take
   std::size_t read_ahead = 512;  // commands taken ahead of what is sent (gc-send: a few, so a
                                  // stage switched on mid-stream changes what follows at once)
-  // Hold no more moves ahead of the nozzle than the printer's planner takes:
-  // a move goes out only while the moves in flight and those the planner
-  // still holds are fewer than its blocks. What the planner holds comes
-  // from the answers: each answered move entered it then, and runs for its
-  // length at its feed rate after the one before (the fastest it can go,
-  // so the count never runs high and the planner is never starved by it).
-  // So a pause stops after what the planner holds (background.md §1:
-  // 16 x 0.2 mm), and the printer still never waits for a line.
+  // Hold no more moves ahead of the nozzle than the printer's planner
+  // takes (pacer.hpp), so a pause stops after what the planner holds
+  // (background.md §1: 16 x 0.2 mm), and the printer still never waits for a line.
   bool pace = false;
   bool handshake = true;     // M110 N0 + M115 before the first line
   bool finish_with_m400 = true;
@@ -133,17 +89,6 @@ struct Position {
   long long number = 0;          // the line number sent to the printer
   std::uint64_t source_line = 0; // the line in the input file (0: none)
   int layer = 0;                 // the layer it belongs to (0: start code)
-};
-
-struct FirmwareInfo {
-  std::string name;              // FIRMWARE_NAME
-  bool advanced_ok = false;
-  bool emergency_parser = false;
-  bool autoreport_temp = false;
-  bool busy_protocol = false;
-  double time_scale = 0;         // TIME_SCALE: a simulated printer runs this much faster
-  double baud = 0;               // BAUD: a simulated printer's link rate
-  std::size_t max_line = 0;      // Cap:MAX_CMD_SIZE (Marlin does not report it)
 };
 
 class Sender : private TimeSink {
@@ -236,7 +181,6 @@ class Sender : private TimeSink {
   static constexpr double kQuietStart = 0.05;      // quiet link after M115 before the first line
   static constexpr double kNever = 1e300;
   static constexpr std::string_view kProbe = "M105";  // asks for an answer that proves progress
-  static constexpr int kQuickProbes = 3;  // overdue answers asked for in a row before only --timeout asks
 
   struct Slot {
     std::string wire;            // "N12 G1 X1*34\n"
@@ -251,14 +195,6 @@ class Sender : private TimeSink {
     double nominal = 0;          // length / feed rate: no move takes less
     bool motion_final = false;
   };
-  struct Flight {
-    long long number;            // -1: an unnumbered command (M105 asked by the sender)
-    std::uint32_t bytes;
-    bool temperature_query;
-    std::uint64_t end;           // output offset just after its last byte
-    double arrival;              // when it reached the printer (kNever: not written yet)
-  };
-
   Slot& slot(long long n) { return ring_[static_cast<std::size_t>(n) & (ring_.size() - 1)]; }
   const Slot& slot(long long n) const { return ring_[static_cast<std::size_t>(n) & (ring_.size() - 1)]; }
   void on_time(std::int64_t tag, double seconds) override;
@@ -271,18 +207,23 @@ class Sender : private TimeSink {
   void acknowledge_front(double now);
   void acknowledge_through(std::size_t index, double now);
   void on_ok(const Response& r, double now);
+  bool answers_handshake(double now);
   void on_resend(long long n, double now);
+  void on_error(const Response& r, double now);
+  void on_action(std::string_view action);
+  void on_start();
   void on_capability(std::string_view text);
+  void note_temperatures(const Response& r, std::string_view text);
   void set_link(double bytes_per_second, double time_scale);
   void fail(std::string message);
   void check_done(double now);
   void probe(double now, bool silent);
+  void handshake_timer(double now);
   double current_timeout() const;
   double overdue_at() const;
   bool settled(double now) const;
-  bool lines_in_flight() const;
-  std::size_t flight_lines() const;
-  bool probing() const;
+  bool lines_in_flight() const { return flight_.lines() > 0; }
+  bool long_command_in_flight() const;
   bool paced(double now);
   void planned(const Slot& s, double now);
   void log(LogLevel level, std::uint64_t input_line, std::string_view message) const;
@@ -301,8 +242,7 @@ class Sender : private TimeSink {
   long long next_number_ = 1;   // the number the next submitted command gets
   long long next_send_ = 1;     // the next number to transmit
   long long highest_sent_ = 0;
-  std::deque<Flight> flight_;
-  std::size_t flight_bytes_ = 0;
+  InFlight flight_;
   std::uint64_t out_total_ = 0;     // bytes ever put into out_
   std::uint64_t written_total_ = 0; // bytes ever handed to the port
 
@@ -311,20 +251,13 @@ class Sender : private TimeSink {
   bool cancelled_ = false;
   bool emergency_ = false;
   bool paused_ = false;         // //action:pause until //action:resume
-  bool expect_error_ok_ = false;
   bool caps_answered_ = false;
   bool idle_hint_ = false;      // the printer said "wait" (idle) with lines in flight
-  int probes_in_row_ = 0;       // questions without an answer: each waits twice as long
-  double next_probe_ = 0;       // no question before this
+  ProbeBackoff probes_;
   int learnt_planner_ = 0;      // planner blocks seen in ADVANCED_OK's P
   std::string refusal_;         // why the input stopped early (a line the firmware cannot take)
 
-  bool settling_ = false;
-  long long settle_line_ = -1;
-  double settle_from_ = 0;
-  double settle_quiet_ = 0;
-  long long resend_line_ = -1;
-  int resend_count_ = 0;
+  ResendState resend_;
 
   double last_rx_ = 0;          // last sign of life (an answer, busy, a heating report)
   double last_any_rx_ = 0;      // last byte of anything
@@ -340,12 +273,7 @@ class Sender : private TimeSink {
   bool trace_ = false;
   ActionHandler on_action_;
   std::string temperatures_;
-  // Pacing: when the last answered moves end at the earliest (ring of the
-  // planner's size), and when a blocked move may go.
-  std::array<double, 64> pace_ends_{};
-  std::size_t pace_next_ = 0;
-  double pace_last_end_ = 0;
-  double pace_wait_ = 1e300;
+  Pacer pacer_;
 };
 
 }  // namespace gcode::serial

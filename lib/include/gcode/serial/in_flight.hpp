@@ -1,0 +1,80 @@
+#pragma once
+// The sender's ledger of what is on its way to the printer and not answered
+// yet, in the order it was written: numbered lines and the sender's own
+// unnumbered questions (M105). It owns the rule of answers: every line in
+// flight gets one answer, in order, and each "ok" frees what it answers for
+// (answer_to), no more.
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+
+#include "gcode/serial/protocol.hpp"
+
+namespace gcode::serial {
+
+class InFlight {
+ public:
+  static constexpr double kNotArrived = 1e300;
+
+  struct Entry {
+    long long number;            // -1: an unnumbered command (M105 asked by the sender)
+    std::uint32_t bytes;
+    bool temperature_query;      // M105: answered in order with "ok T:..."
+    std::uint64_t end;           // output offset just after its last byte
+    double arrival;              // when it reached the printer (kNotArrived: not written yet)
+  };
+
+  // What an "ok" answers for.
+  struct Answer {
+    enum class Kind : std::uint8_t {
+      Stray,    // nothing in flight (counted, frees nothing)
+      Through,  // every entry up to `index` is answered
+      Question, // only the unnumbered question at `index` (ADVANCED_OK's ok without N)
+    };
+    Kind kind = Kind::Stray;
+    std::size_t index = 0;
+  };
+  // `numbered_oks`: ADVANCED_OK, "ok N<n>" answers line n.
+  Answer answer_to(const Response& ok, bool numbered_oks) const;
+
+  void push(long long number, std::size_t bytes, bool temperature_query, std::uint64_t end) {
+    entries_.push_back({number, static_cast<std::uint32_t>(bytes), temperature_query, end, kNotArrived});
+    bytes_ += bytes;
+  }
+  Entry pop_front();
+  void erase(std::size_t index);
+  // A resend of line n: every entry from n on (and any question behind
+  // them) is lost or will be rejected. Returns their bytes.
+  std::size_t drop_from(long long n);
+  void clear() {
+    entries_.clear();
+    bytes_ = 0;
+  }
+  // Entries whose last byte is within the first `written` bytes ever
+  // written reach the printer at the time `arrival(bytes written after them)` says.
+  template <class Arrival>
+  void written(std::uint64_t written, Arrival arrival) {
+    for (Entry& e : entries_) {
+      if (e.end > written) break;
+      if (e.arrival == kNotArrived) e.arrival = arrival(static_cast<std::size_t>(written - e.end));
+    }
+  }
+
+  bool empty() const { return entries_.empty(); }
+  std::size_t size() const { return entries_.size(); }
+  std::size_t bytes() const { return bytes_; }
+  // Numbered lines among them.
+  std::size_t lines() const;
+  // A question of the sender's is among them.
+  bool asking() const;
+  const Entry& front() const { return entries_.front(); }
+  const Entry& operator[](std::size_t i) const { return entries_[i]; }
+  auto begin() const { return entries_.begin(); }
+  auto end() const { return entries_.end(); }
+
+ private:
+  std::deque<Entry> entries_;
+  std::size_t bytes_ = 0;
+};
+
+}  // namespace gcode::serial
