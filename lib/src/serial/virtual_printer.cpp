@@ -1,10 +1,8 @@
 #include "gcode/serial/virtual_printer.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <limits>
-#include <stdexcept>
 #include <string>
 
 #include <fmt/format.h>
@@ -22,93 +20,11 @@ constexpr double kHomingTime = 3.0;
 constexpr double kStallTime = 3.0;
 constexpr double kAmbient = 20.0;
 
-double parse_value(std::string_view key, std::string_view value) {
-  double v = 0;
-  auto res = std::from_chars(value.data(), value.data() + value.size(), v);
-  if (res.ec != std::errc() || res.ptr != value.data() + value.size() || !std::isfinite(v) || v < 0)
-    throw std::invalid_argument(fmt::format("virtual printer option {}: '{}' is not a number >= 0", key, value));
-  return v;
-}
-
-bool parse_flag(std::string_view key, std::string_view value) {
-  if (value.empty() || value == "1" || value == "on" || value == "yes" || value == "true") return true;
-  if (value == "0" || value == "off" || value == "no" || value == "false") return false;
-  throw std::invalid_argument(fmt::format("virtual printer option {}: '{}' is not on/off", key, value));
-}
-
-double probability(std::string_view key, std::string_view value) {
-  double p = parse_value(key, value);
-  if (p > 1) throw std::invalid_argument(fmt::format("virtual printer option {}: {} is not a probability", key, value));
-  return p;
-}
-
 }  // namespace
 
-void parse_virtual_options(std::string_view text, VirtualPrinterConfig& c) {
-  while (!text.empty()) {
-    std::size_t comma = text.find(',');
-    std::string_view item = text.substr(0, comma);
-    text = comma == std::string_view::npos ? std::string_view() : text.substr(comma + 1);
-    if (item.empty()) continue;
-    std::size_t eq = item.find('=');
-    std::string_view key = item.substr(0, eq);
-    std::string_view value = eq == std::string_view::npos ? std::string_view() : item.substr(eq + 1);
-    auto count = [&](double lo) {
-      double v = parse_value(key, value);
-      if (v < lo || v != std::floor(v))
-        throw std::invalid_argument(fmt::format("virtual printer option {}: '{}' must be a whole number >= {}", key, value, lo));
-      return v;
-    };
-    if (key == "baud") {
-      c.baud = count(50);
-    } else if (key == "queue") {
-      c.queue = static_cast<int>(count(1));
-    } else if (key == "rx") {
-      c.rx_buffer = static_cast<int>(count(16));
-    } else if (key == "max-line") {
-      c.max_line = static_cast<int>(count(16));
-    } else if (key == "planner") {
-      c.planner = static_cast<int>(count(1));
-    } else if (key == "time-scale") {
-      c.time_scale = parse_value(key, value);
-      if (c.time_scale <= 0) throw std::invalid_argument("virtual printer option time-scale must be > 0");
-    } else if (key == "advanced-ok") {
-      c.advanced_ok = parse_flag(key, value);
-    } else if (key == "instant-moves") {
-      c.instant_moves = parse_flag(key, value);
-    } else if (key == "report-link") {
-      c.report_link = parse_flag(key, value);
-    } else if (key == "heat-rate") {
-      c.heat_rate = std::max(0.01, parse_value(key, value));
-    } else if (key == "corrupt") {
-      c.corrupt = probability(key, value);
-    } else if (key == "drop-ok") {
-      c.drop_ok = probability(key, value);
-    } else if (key == "resend") {
-      c.resend = probability(key, value);
-    } else if (key == "garbage") {
-      c.garbage = probability(key, value);
-    } else if (key == "busy") {
-      c.busy = probability(key, value);
-    } else if (key == "silent-after") {
-      c.silent_after = static_cast<long long>(count(0));
-    } else if (key == "halt-after") {
-      c.halt_after = static_cast<long long>(count(0));
-    } else if (key == "disconnect-after") {
-      c.disconnect_after = static_cast<long long>(count(0));
-    } else if (key == "log") {
-      c.log_path = std::string(value);
-    } else if (key == "seed") {
-      c.seed = static_cast<std::uint32_t>(count(0));
-    } else {
-      throw std::invalid_argument(fmt::format("unknown virtual printer option '{}'", key));
-    }
-  }
-}
-
 VirtualPrinter::VirtualPrinter(const VirtualPrinterConfig& config, std::FILE* log)
-    : config_(config), log_(log), byte_time_(10.0 / config.baud), rng_(config.seed) {
-  send("start");
+    : config_(config), log_(log), wire_(config.baud), rng_(config.seed) {
+  send(dialect_->greeting());
 }
 
 bool VirtualPrinter::chance(double p) {
@@ -116,42 +32,10 @@ bool VirtualPrinter::chance(double p) {
   return std::uniform_real_distribution<double>(0, 1)(rng_) < p;
 }
 
-void VirtualPrinter::receive(std::string_view bytes, double now) {
-  if (bytes.empty()) return;
-  if (wire_head_ == wire_.size()) {
-    wire_.clear();
-    wire_head_ = 0;
-    wire_next_ = std::max(now, wire_next_) + byte_time_;
-  }
-  wire_.append(bytes);
-}
-
 void VirtualPrinter::send(std::string_view text) {
   if (silent_ || halted_) return;
-  tx_.append(text);
-  tx_ += '\n';
   stats_.tx_bytes += text.size() + 1;
-  tx_free_at_ = std::max(tx_free_at_, now_) + static_cast<double>(text.size() + 1) * byte_time_;
-}
-
-std::string_view VirtualPrinter::transmitted(double now) const {
-  std::size_t pending = tx_.size() - tx_head_;
-  if (pending == 0) return {};
-  double left = (tx_free_at_ - now) / byte_time_;  // bytes still on the way
-  std::size_t not_done = left <= 0 ? 0 : static_cast<std::size_t>(std::ceil(left - 1e-6));
-  std::size_t done = not_done >= pending ? 0 : pending - not_done;
-  return std::string_view(tx_).substr(tx_head_, done);
-}
-
-void VirtualPrinter::take(std::size_t n) {
-  tx_head_ += n;
-  if (tx_head_ == tx_.size()) {
-    tx_.clear();
-    tx_head_ = 0;
-  } else if (tx_head_ > (1u << 16)) {
-    tx_.erase(0, tx_head_);
-    tx_head_ = 0;
-  }
+  wire_.transmit(text, now_);
 }
 
 bool VirtualPrinter::heated() const {
@@ -168,15 +52,7 @@ double VirtualPrinter::heat_done_time() const {
 }
 
 double VirtualPrinter::next_event() const {
-  double t = kNever;
-  if (wire_head_ < wire_.size()) t = wire_next_;
-  std::size_t pending = tx_.size() - tx_head_;
-  if (pending > 0) {
-    // Wake when the next whole line has been sent, not for every byte.
-    std::size_t nl = tx_.find('\n', tx_head_);
-    std::size_t upto = nl == std::string::npos ? tx_.size() : nl + 1;
-    t = std::min(t, tx_free_at_ - static_cast<double>(tx_.size() - upto) * byte_time_);
-  }
+  double t = std::min(wire_.next_arrival(), wire_.next_line_sent());
   if (disconnected_ || halted_ || silent_) return t;  // the firmware does nothing more
   if (!planner_.empty()) t = std::min(t, head_end_);
   switch (wait_) {
@@ -193,7 +69,7 @@ double VirtualPrinter::next_event() const {
 
 void VirtualPrinter::advance(double now) {
   for (;;) {
-    double t_wire = wire_head_ < wire_.size() ? wire_next_ : kNever;
+    double t_wire = wire_.next_arrival();
     double t_fw = kNever;
     if (!halted_ && !silent_ && !disconnected_) {
       if (!planner_.empty()) t_fw = head_end_;
@@ -205,28 +81,19 @@ void VirtualPrinter::advance(double now) {
     double t = std::min(t_wire, t_fw);
     if (t > now || t == kNever) break;
     if (t_wire <= t_fw) {
-      char c = wire_[wire_head_++];
-      wire_next_ += byte_time_;
-      if (wire_head_ == wire_.size()) {
-        wire_next_ -= byte_time_;  // the time the last byte arrived
-        wire_.clear();
-        wire_head_ = 0;
-      }
-      arrive(c, t_wire);
+      arrive(wire_.arrive(), t_wire);
       continue;
     }
     now_ = std::max(now_, t);
     update_temperatures(t);
     while (!planner_.empty() && head_end_ <= t) planner_step(head_end_);
     if (wait_ != Wait::None && wait_ != Wait::Heating && next_busy_ <= t) {
-      send("echo:busy: processing");
+      send(dialect_->busy());
       next_busy_ = t + kKeepalive;
     }
     if (next_report_ <= t) {
       bool heating = wait_ == Wait::Heating;
-      std::string report = temperature_report();
-      if (heating) report += " W:?";
-      send(report);
+      send(dialect_->temperatures(temperatures(), heating));
       next_report_ = heating ? t + 1 : (autoreport_ > 0 ? t + autoreport_ : kNever);
     }
     run(t);
@@ -247,7 +114,7 @@ void VirtualPrinter::arrive(char c, double t) {
                 (cmd.size() == 4 || cmd[4] < '0' || cmd[4] > '9');
     emergency_.clear();
     if (m112) {
-      send("Error:Printer halted. kill() called!");
+      send(dialect_->halted());
       halted_ = true;
       return;
     }
@@ -276,10 +143,7 @@ void VirtualPrinter::update_temperatures(double t) {
   step(bed_, bed_target_, config_.heat_rate / 3);
 }
 
-std::string VirtualPrinter::temperature_report() const {
-  return fmt::format("T:{:.2f} /{:.2f} B:{:.2f} /{:.2f} @:{} B@:{}", hotend_, hotend_target_, bed_, bed_target_,
-                     hotend_ < hotend_target_ ? 127 : 0, bed_ < bed_target_ ? 127 : 0);
-}
+Temperatures VirtualPrinter::temperatures() const { return {hotend_, hotend_target_, bed_, bed_target_}; }
 
 void VirtualPrinter::run(double t) {
   now_ = std::max(now_, t);
@@ -294,13 +158,13 @@ void VirtualPrinter::run(double t) {
       finish(t);
       continue;
     }
-    parse_rx(t);
+    parse_rx();
     if (queue_.empty()) return;
     start(t);
   }
 }
 
-void VirtualPrinter::parse_rx(double t) {
+void VirtualPrinter::parse_rx() {
   // Marlin's get_serial_commands(): read while the queue has room.
   while (queue_.size() < static_cast<std::size_t>(config_.queue) && rx_head_ < rx_.size() && !halted_) {
     char c = rx_[rx_head_++];
@@ -308,7 +172,7 @@ void VirtualPrinter::parse_rx(double t) {
       if (!partial_.empty()) {
         std::string line;
         line.swap(partial_);
-        process_line(line, t);
+        process_line(line);
         partial_.swap(line);
         partial_.clear();
       }
@@ -324,19 +188,16 @@ void VirtualPrinter::parse_rx(double t) {
   }
 }
 
-void VirtualPrinter::line_error(const char* message, double t) {
-  (void)t;
-  send(fmt::format("Error:{}{}", message, last_n_));
+void VirtualPrinter::reject(LineFault fault) {
   // Marlin drains its receive buffer after a bad line: whatever followed is
   // gone and must be resent too.
   stats_.drained_bytes += rx_.size() - rx_head_;
   rx_.clear();
   rx_head_ = 0;
-  send(fmt::format("Resend: {}", last_n_ + 1));
-  send("ok");
+  for (const std::string& answer : dialect_->rejected(fault, last_n_)) send(answer);
 }
 
-bool VirtualPrinter::process_line(std::string& line, double t) {
+bool VirtualPrinter::process_line(std::string& line) {
   if (chance(config_.corrupt) && !line.empty()) {
     std::size_t i = std::uniform_int_distribution<std::size_t>(0, line.size() - 1)(rng_);
     line[i] = static_cast<char>(line[i] ^ (1 << std::uniform_int_distribution<int>(0, 5)(rng_)));
@@ -355,24 +216,24 @@ bool VirtualPrinter::process_line(std::string& line, double t) {
     long long n = std::strtoll(line.c_str() + npos + 1, nullptr, 10);
     if (n != last_n_ + 1 && !m110) {
       ++stats_.line_number_errors;
-      line_error("Line Number is not Last Line Number+1, Last Line: ", t);
+      reject(LineFault::LineNumber);
       return false;
     }
     std::size_t apos = line.rfind('*');
     if (apos == std::string::npos) {
       ++stats_.checksum_errors;
-      line_error("No Checksum with line number, Last Line: ", t);
+      reject(LineFault::NoChecksum);
       return false;
     }
     long long sum = std::strtoll(line.c_str() + apos + 1, nullptr, 10);
     if (sum != checksum(std::string_view(line).substr(0, apos))) {
       ++stats_.checksum_errors;
-      line_error("checksum mismatch, Last Line: ", t);
+      reject(LineFault::Checksum);
       return false;
     }
     if (chance(config_.resend)) {
       ++stats_.spurious_resends;
-      line_error("checksum mismatch, Last Line: ", t);
+      reject(LineFault::Checksum);
       return false;
     }
     last_n_ = n;
@@ -381,7 +242,7 @@ bool VirtualPrinter::process_line(std::string& line, double t) {
     text = command_for_sending(text);
   } else if (line.find('*') != std::string::npos) {
     ++stats_.checksum_errors;
-    line_error("No Line Number with checksum, Last Line: ", t);
+    reject(LineFault::NoLineNumber);
     return false;
   }
   Command cmd;
@@ -428,18 +289,10 @@ void VirtualPrinter::send_ok(long long number) {
     ++stats_.dropped_oks;
     return;
   }
-  if (!config_.advanced_ok) {
-    send("ok");
-    return;
-  }
   // The queue still holds the command being acknowledged, as in Marlin.
   int planner_free = config_.planner - static_cast<int>(planner_.size());
   int queue_free = config_.queue - static_cast<int>(queue_.size());
-  if (number >= 0) {
-    send(fmt::format("ok N{} P{} B{}", number, planner_free, queue_free));
-  } else {
-    send(fmt::format("ok P{} B{}", planner_free, queue_free));
-  }
+  send(dialect_->ok(number, config_.advanced_ok, planner_free, queue_free));
 }
 
 // The head command starts; it either completes now (finish) or sets a wait.
@@ -460,83 +313,138 @@ void VirtualPrinter::start(double t) {
   }
   Line line = Line::parse(c.text);
   Move m = state_.apply(line);
-  if (line.kind == CommandKind::Extended || line.kind == CommandKind::Host) {
-    send(fmt::format("echo:Unknown command: \"{}\"", line.code()));
-    finish(t);
-    return;
-  }
-  if (m.kind == MoveKind::Linear || m.kind == MoveKind::Arc) {
-    double length = m.length > 0 ? m.length : std::abs(m.filament);
-    if (length > 0) {
-      double feed = m.feedrate > 0 ? m.feedrate : 1500;
-      pending_duration_ = config_.instant_moves ? 0 : length / (feed / 60);
-      pending_length_ = m.length;
-      if (planner_.size() >= static_cast<std::size_t>(config_.planner)) {
-        wait_ = Wait::PlannerSlot;
-        next_busy_ = t + kKeepalive;
-        return;
-      }
-      add_block(pending_duration_, t);
+  if (execute(line, m, t)) finish(t);
+}
+
+// One handler per command; true: done now (its ok goes out), false: it waits.
+bool VirtualPrinter::execute(const Line& line, const Move& m, double t) {
+  if (line.kind == CommandKind::Extended || line.kind == CommandKind::Host) return process_unknown(line);
+  if (m.kind == MoveKind::Linear || m.kind == MoveKind::Arc) return process_move(m, t);
+  if (line.kind != CommandKind::Standard) return true;
+  if (line.letter == 'G') {
+    switch (line.number) {
+      case 4: return process_G4(line, t);
+      case 28: case 29: return process_G28(t);
+      default: return true;
     }
-    finish(t);
-    return;
   }
-  if (line.is_g(28) || line.is_g(29) || line.is_g(4) || line.is_m(400)) {
-    wait_ = Wait::PlannerEmpty;
+  if (line.letter != 'M') return true;
+  switch (line.number) {
+    case 104: case 140: return process_M104(line);
+    case 105: return process_M105();
+    case 109: case 190: return process_M109(line, t);
+    case 110: return process_M110(line);
+    case 112: return process_M112();
+    case 114: return process_M114();
+    case 115: return process_M115();
+    case 155: return process_M155(line, t);
+    case 400: return process_M400(t);
+    default: return true;
+  }
+}
+
+// Klipper-style extended commands and host commands: Marlin knows none.
+bool VirtualPrinter::process_unknown(const Line& line) {
+  send(dialect_->unknown_command(line.code()));
+  return true;
+}
+
+// G0-G3: a block of the planner once one is free (its ok waits until then).
+bool VirtualPrinter::process_move(const Move& m, double t) {
+  double length = m.length > 0 ? m.length : std::abs(m.filament);
+  if (length <= 0) return true;
+  double feed = m.feedrate > 0 ? m.feedrate : 1500;
+  pending_duration_ = config_.instant_moves ? 0 : length / (feed / 60);
+  pending_length_ = m.length;
+  if (planner_.size() >= static_cast<std::size_t>(config_.planner)) {
+    wait_ = Wait::PlannerSlot;
     next_busy_ = t + kKeepalive;
-    after_ = 0;
-    if (line.is_g(28) || line.is_g(29)) {
-      after_ = 1;
-      after_duration_ = config_.instant_moves ? 0 : kHomingTime;
-    } else if (line.is_g(4)) {
-      after_ = 2;
-      after_duration_ = line.value_or('P', 0) / 1000 + line.value_or('S', 0);
-    }
-    return;
+    return false;
   }
+  add_block(pending_duration_, t);
+  return true;
+}
+
+// Waits for the planner to empty, then `after` (1 home, 2 dwell) for `duration`.
+bool VirtualPrinter::wait_for_planner(double t, int after, double duration) {
+  wait_ = Wait::PlannerEmpty;
+  next_busy_ = t + kKeepalive;
+  after_ = after;
+  after_duration_ = duration;
+  return false;
+}
+
+// G4 P<ms> S<s>: dwell, after the moves before it.
+bool VirtualPrinter::process_G4(const Line& line, double t) {
+  return wait_for_planner(t, 2, line.value_or('P', 0) / 1000 + line.value_or('S', 0));
+}
+
+// G28, G29: homing or probing, after the moves before it.
+bool VirtualPrinter::process_G28(double t) { return wait_for_planner(t, 1, config_.instant_moves ? 0 : kHomingTime); }
+
+// M400: waits for the moves to end.
+bool VirtualPrinter::process_M400(double t) { return wait_for_planner(t, 0, 0); }
+
+// M104/M140 S|R: a hot end or bed target, no wait.
+bool VirtualPrinter::process_M104(const Line& line) {
+  set_target(line);
+  return true;
+}
+
+void VirtualPrinter::set_target(const Line& line) {
   if (line.is_m(104) || line.is_m(109)) hotend_target_ = line.value_or('S', line.value_or('R', hotend_target_));
   if (line.is_m(140) || line.is_m(190)) bed_target_ = line.value_or('S', line.value_or('R', bed_target_));
-  if (line.is_m(109) || line.is_m(190)) {
-    heating_bed_ = line.is_m(190);
-    wait_ = Wait::Heating;
-    waited_while_empty_ = true;
-    next_report_ = std::min(next_report_, t + 1);
-    return;
-  }
-  if (line.is_m(105)) {
-    send(fmt::format("ok {}", temperature_report()));
-    ok_sent_ = true;
-  } else if (line.is_m(114)) {
-    send(fmt::format("X:{:.2f} Y:{:.2f} Z:{:.2f} E:{:.2f} Count X:{} Y:{} Z:{}", state_.position[kX],
-                     state_.position[kY], state_.position[kZ], state_.position[kE],
-                     std::lround(state_.machine(kX) * 80), std::lround(state_.machine(kY) * 80),
-                     std::lround(state_.machine(kZ) * 400)));
-  } else if (line.is_m(110)) {
-    if (line.find('N') != nullptr) last_n_ = static_cast<long long>(line.value_or('N', 0));
-  } else if (line.is_m(115)) {
-    std::string link = config_.report_link ? fmt::format(" TIME_SCALE:{} BAUD:{}", config_.time_scale, config_.baud)
-                                           : std::string();
-    send(fmt::format("FIRMWARE_NAME:Marlin 2.1.2 (gc-virtual-printer) SOURCE_CODE_URL:github.com/MarlinFirmware/Marlin "
-                     "PROTOCOL_VERSION:1.0 MACHINE_TYPE:Virtual EXTRUDER_COUNT:1{}",
-                     link));
-    send("Cap:SERIAL_XON_XOFF:0");
-    send(fmt::format("Cap:ADVANCED_OK:{}", config_.advanced_ok ? 1 : 0));
-    send("Cap:EMERGENCY_PARSER:1");
-    send("Cap:AUTOREPORT_TEMP:1");
-    send("Cap:AUTOREPORT_POS:0");
-    send("Cap:HOST_ACTION_COMMANDS:1");
-    // Not a Marlin capability (Marlin does not report its MAX_CMD_SIZE); a
-    // host that reads it can size its lines.
-    send(fmt::format("Cap:MAX_CMD_SIZE:{}", config_.max_line));
-  } else if (line.is_m(155)) {
-    autoreport_ = line.value_or('S', 0);
-    next_report_ = autoreport_ > 0 ? t + autoreport_ : (wait_ == Wait::Heating ? next_report_ : kNever);
-  } else if (line.is_m(112)) {
-    send("Error:Printer halted. kill() called!");
-    halted_ = true;
-    return;
-  }
-  finish(t);
+}
+
+// M109/M190: the target, then a wait until it is reached, reporting every second.
+bool VirtualPrinter::process_M109(const Line& line, double t) {
+  set_target(line);
+  heating_bed_ = line.is_m(190);
+  wait_ = Wait::Heating;
+  waited_while_empty_ = true;
+  next_report_ = std::min(next_report_, t + 1);
+  return false;
+}
+
+// M105: the temperatures on the ok line.
+bool VirtualPrinter::process_M105() {
+  send(dialect_->temperature_ok(temperatures()));
+  ok_sent_ = true;
+  return true;
+}
+
+// M110 N<n>: the next line number is n + 1.
+bool VirtualPrinter::process_M110(const Line& line) {
+  if (line.find('N') != nullptr) last_n_ = static_cast<long long>(line.value_or('N', 0));
+  return true;
+}
+
+// M112 (without the emergency parser's head start): halt at once, no ok.
+bool VirtualPrinter::process_M112() {
+  send(dialect_->halted());
+  halted_ = true;
+  return false;
+}
+
+// M114: the position and the step counts (80 steps/mm XY, 400 Z).
+bool VirtualPrinter::process_M114() {
+  send(dialect_->position(state_.position[kX], state_.position[kY], state_.position[kZ], state_.position[kE],
+                          std::lround(state_.machine(kX) * 80), std::lround(state_.machine(kY) * 80),
+                          std::lround(state_.machine(kZ) * 400)));
+  return true;
+}
+
+// M115: the firmware and its capabilities.
+bool VirtualPrinter::process_M115() {
+  for (const std::string& l : dialect_->firmware_report(config_)) send(l);
+  return true;
+}
+
+// M155 S<s>: temperature autoreport every s seconds (0: off).
+bool VirtualPrinter::process_M155(const Line& line, double t) {
+  autoreport_ = line.value_or('S', 0);
+  next_report_ = autoreport_ > 0 ? t + autoreport_ : (wait_ == Wait::Heating ? next_report_ : kNever);
+  return true;
 }
 
 bool VirtualPrinter::still_waiting(double t) {
@@ -586,8 +494,8 @@ void VirtualPrinter::finish(double t) {
   }
   long long done = static_cast<long long>(stats_.executed);
   if (done == config_.halt_after) {
-    send("Error:Thermal Runaway, system stopped! Heater_ID: 0");
-    send("Error:Printer halted. kill() called!");
+    send(dialect_->thermal_runaway());
+    send(dialect_->halted());
     halted_ = true;
   }
   if (done == config_.silent_after) silent_ = true;

@@ -27,6 +27,10 @@
 //    requests, garbage lines, busy stalls, going silent, a fatal error, a
 //    disconnect;
 //  * every executed command is logged with the simulated time and position.
+//
+// Its options are virtual_printer_options.hpp, the link virtual_wire.hpp,
+// the texts of its answers virtual_dialect.hpp (Marlin's); each command has
+// a handler of its own (process_G28, process_M109, ...).
 #include <cstdint>
 #include <cstdio>
 #include <deque>
@@ -35,38 +39,11 @@
 #include <string_view>
 
 #include "gcode/core/machine_state.hpp"
+#include "gcode/serial/virtual_dialect.hpp"
+#include "gcode/serial/virtual_printer_options.hpp"
+#include "gcode/serial/virtual_wire.hpp"
 
 namespace gcode::serial {
-
-struct VirtualPrinterConfig {
-  double baud = 250000;
-  int queue = 4;              // BUFSIZE
-  int rx_buffer = 128;        // RX_BUFFER_SIZE
-  int max_line = 96;          // MAX_CMD_SIZE: a line keeps max_line - 1 bytes
-  int planner = 16;           // BLOCK_BUFFER_SIZE
-  double time_scale = 1;      // simulated seconds per wall second
-  bool advanced_ok = false;   // answer "ok N.. P.. B.."
-  bool instant_moves = false; // moves take no time: the link is the only limit
-  bool report_link = true;    // M115 names TIME_SCALE and BAUD (a real firmware does not)
-  double heat_rate = 10;      // degrees per second (the bed heats at a third of it)
-  // Faults: probabilities per received line / per answer.
-  double corrupt = 0;         // a received line gets one byte changed
-  double drop_ok = 0;         // an "ok" is not sent
-  double resend = 0;          // a good line is rejected as if corrupted
-  double garbage = 0;         // a line of junk after an answer
-  double busy = 0;            // a command stalls 3 s with busy messages
-  long long silent_after = -1;     // stop answering after this many commands
-  long long halt_after = -1;       // report a fatal error after this many commands
-  long long disconnect_after = -1; // drop the link after this many commands
-  std::uint32_t seed = 1;
-  std::string log_path;       // where the caller writes the executed-command log
-};
-
-// Applies "key=value,key=value" (the part after "virtual:") to `config`.
-// Keys: baud queue rx max-line planner time-scale advanced-ok instant-moves
-// report-link heat-rate corrupt drop-ok resend garbage busy silent-after
-// halt-after disconnect-after seed log. Throws std::invalid_argument naming a bad key or value.
-void parse_virtual_options(std::string_view text, VirtualPrinterConfig& config);
 
 struct VirtualPrinterStats {
   std::uint64_t executed = 0;          // commands that left the queue
@@ -89,7 +66,7 @@ class VirtualPrinter {
 
   // Bytes written by the host at simulated time `now`: they reach the RX
   // buffer one byte time apart, after what is already on the wire.
-  void receive(std::string_view bytes, double now);
+  void receive(std::string_view bytes, double now) { wire_.receive(bytes, now); }
   // Runs the model up to `now`.
   void advance(double now);
   // When the model next has something to do (an arriving byte, a finished
@@ -97,8 +74,8 @@ class VirtualPrinter {
   double next_event() const;
   // Bytes whose transmission to the host has completed by `now`; the caller
   // takes them with `take(n)`.
-  std::string_view transmitted(double now) const;
-  void take(std::size_t n);
+  std::string_view transmitted(double now) const { return wire_.transmitted(now); }
+  void take(std::size_t n) { wire_.take(n); }
 
   bool disconnected() const { return disconnected_; }
   bool halted() const { return halted_; }
@@ -131,41 +108,48 @@ class VirtualPrinter {
 
   void arrive(char c, double t);
   void run(double t);
-  void parse_rx(double t);
-  bool process_line(std::string& line, double t);
-  void line_error(const char* message, double t);
+  void parse_rx();
+  bool process_line(std::string& line);
+  void reject(LineFault fault);
   void start(double t);
+  bool execute(const Line& line, const Move& m, double t);
+  bool process_unknown(const Line& line);
+  bool process_move(const Move& m, double t);
+  bool process_G4(const Line& line, double t);
+  bool process_G28(double t);
+  bool process_M104(const Line& line);
+  bool process_M105();
+  bool process_M109(const Line& line, double t);
+  bool process_M110(const Line& line);
+  bool process_M112();
+  bool process_M114();
+  bool process_M115();
+  bool process_M155(const Line& line, double t);
+  bool process_M400(double t);
+  bool wait_for_planner(double t, int after, double duration);
+  void set_target(const Line& line);
   bool still_waiting(double t);
   void finish(double t);
-  void execute(const Command& cmd, double t);
   void add_block(double duration, double t);
   void planner_step(double t);
   void send(std::string_view text);
   void send_ok(long long number);
   void update_temperatures(double t);
-  std::string temperature_report() const;
+  Temperatures temperatures() const;
   bool heated() const;
   double heat_done_time() const;
   bool chance(double p);
 
   VirtualPrinterConfig config_;
   std::FILE* log_;
-  double byte_time_;
+  const ReplyDialect* dialect_ = &marlin_dialect();
   double now_ = 0;               // the time of the event being processed
 
-  // host -> printer
-  std::string wire_;
-  std::size_t wire_head_ = 0;
-  double wire_next_ = 0;        // arrival time of wire_[wire_head_]
+  VirtualWire wire_;
   std::string rx_;              // the RX ring buffer (front = oldest)
   std::size_t rx_head_ = 0;
   std::string partial_;         // the line being read out of the RX buffer
   std::string emergency_;       // the start of the line arriving, for the emergency parser
-
-  // printer -> host
-  std::string tx_;
-  std::size_t tx_head_ = 0;
-  double tx_free_at_ = 0;       // when the last queued byte is sent
 
   std::deque<Command> queue_;
   std::deque<Command> spare_;   // reused strings

@@ -1,0 +1,41 @@
+#pragma once
+// What the virtual printer (virtual_printer.hpp) is: its buffers, link,
+// planner and faults, as `virtual:key=value,...` names them (gc-send
+// --port virtual:..., gc-virtual-printer).
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace gcode::serial {
+
+struct VirtualPrinterConfig {
+  double baud = 250000;
+  int queue = 4;              // BUFSIZE
+  int rx_buffer = 128;        // RX_BUFFER_SIZE
+  int max_line = 96;          // MAX_CMD_SIZE: a line keeps max_line - 1 bytes
+  int planner = 16;           // BLOCK_BUFFER_SIZE
+  double time_scale = 1;      // simulated seconds per wall second
+  bool advanced_ok = false;   // answer "ok N.. P.. B.."
+  bool instant_moves = false; // moves take no time: the link is the only limit
+  bool report_link = true;    // M115 names TIME_SCALE and BAUD (a real firmware does not)
+  double heat_rate = 10;      // degrees per second (the bed heats at a third of it)
+  // Faults: probabilities per received line / per answer.
+  double corrupt = 0;         // a received line gets one byte changed
+  double drop_ok = 0;         // an "ok" is not sent
+  double resend = 0;          // a good line is rejected as if corrupted
+  double garbage = 0;         // a line of junk after an answer
+  double busy = 0;            // a command stalls 3 s with busy messages
+  long long silent_after = -1;     // stop answering after this many commands
+  long long halt_after = -1;       // report a fatal error after this many commands
+  long long disconnect_after = -1; // drop the link after this many commands
+  std::uint32_t seed = 1;
+  std::string log_path;       // where the caller writes the executed-command log
+};
+
+// Applies "key=value,key=value" (the part after "virtual:") to `config`.
+// Keys: baud queue rx max-line planner time-scale advanced-ok instant-moves
+// report-link heat-rate corrupt drop-ok resend garbage busy silent-after
+// halt-after disconnect-after seed log. Throws std::invalid_argument naming a bad key or value.
+void parse_virtual_options(std::string_view text, VirtualPrinterConfig& config);
+
+}  // namespace gcode::serial
