@@ -10,34 +10,6 @@
 
 namespace gcode::serial {
 
-namespace {
-
-// Commands whose "ok" takes a time nothing in the file tells: heating
-// waits, homing, probing and levelling, dwell, waiting for the user.
-bool is_unbounded(const Line& line) {
-  return line.is_m(109) || line.is_m(190) || line.is_m(191) || line.is_m(116) || line.is_m(303) ||
-         line.is_m(600) || line.is_m(0) || line.is_m(1) || line.is_m(226) || line.is_m(48) || line.is_g(28) ||
-         line.is_g(29) || line.is_g(30) || line.is_g(4) || line.is_g(26) || line.is_g(33) || line.is_g(34) ||
-         line.is_g(12);
-}
-
-// Commands Marlin answers at once, without waiting for the moves before them
-// (others may wait until the planner is empty; the sender assumes they do).
-bool is_instant(const Line& line) {
-  if (line.letter == 'G') return line.number == 90 || line.number == 91 || line.number == 92 || line.number == 20 ||
-                                 line.number == 21;
-  if (line.letter != 'M') return false;
-  switch (line.number) {
-    case 73: case 82: case 83: case 104: case 105: case 106: case 107: case 110: case 115: case 117: case 118:
-    case 140: case 141: case 155: case 201: case 203: case 204: case 205: case 220: case 221:
-      return true;
-    default:
-      return false;
-  }
-}
-
-}  // namespace
-
 EstimatorOptions sender_estimator_options() {
   EstimatorOptions o;
   o.heat_time = false;  // heating has no bound here: keepalives tell
@@ -129,9 +101,8 @@ void Sender::enqueue(std::string_view command, std::uint64_t source_line, int la
   s.source_line = source_line;
   s.layer = layer;
   Line line = Line::parse(command);
-  s.unbounded = is_unbounded(line);
-  // M400 waits for the planner to empty: bounded by the moves, but long.
-  s.long_running = s.unbounded || line.is_m(400);
+  s.unbounded = config_.firmware->is_unbounded(line);
+  s.long_running = config_.firmware->is_long_running(line);
   s.temperature_query = line.is_m(105);
   Move move = machine_.apply(line);
   // Until the estimator's time is final (16 moves later), length / feed rate.
@@ -141,7 +112,7 @@ void Sender::enqueue(std::string_view command, std::uint64_t source_line, int la
   bool motion_command = move.kind == MoveKind::Linear || move.kind == MoveKind::Arc;
   s.move = motion_command && !move.ignored && length > 0;
   // "G1 F1200" moves nothing and is answered at once.
-  s.instant = !s.move && (motion_command || is_instant(line));
+  s.instant = !s.move && (motion_command || config_.firmware->is_instant(line));
   s.nominal = s.move && move.feedrate > 0 ? length / (move.feedrate / 60) : 0;
   s.motion = s.nominal;
   estimator_.set_tag(next_number_);

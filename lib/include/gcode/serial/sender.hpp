@@ -18,6 +18,7 @@
 #include <string_view>
 #include <vector>
 
+#include "gcode/core/firmware.hpp"
 #include "gcode/core/machine_state.hpp"
 #include "gcode/report/estimator.hpp"
 #include "gcode/serial/answer_clock.hpp"
@@ -32,6 +33,8 @@
 namespace gcode::serial {
 
 struct SenderConfig {
+  // Which commands take long or answer at once (never null).
+  const FirmwareFlavor* firmware = &marlin2_firmware();
   FlowMode flow = FlowMode::Window;
   int queue = 4;             // Marlin BUFSIZE
   int rx_buffer = 128;       // Marlin RX_BUFFER_SIZE
