@@ -1,11 +1,12 @@
-# gcode_tool(NAME SOURCES...): one executable linked with libgcode and CLI11,
+# gcode_tool(NAME SOURCES...): one executable linked with the front end (gcode_cli:
+# libgcode and CLI11),
 # installed to bin/, with its bash completion generated from its own options
 # (NAME --bash-completion) into share/bash-completion/completions/ of the build
 # tree and installed beside the system's. Every tool is listed in the global
 # property GCODE_TOOLS, which the tests and the package read (no hand-kept list).
 function(gcode_tool name)
   add_executable(${name} ${ARGN})
-  target_link_libraries(${name} PRIVATE gcode CLI11::CLI11)
+  target_link_libraries(${name} PRIVATE gcode_cli)
   install(TARGETS ${name} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
   set_property(GLOBAL APPEND PROPERTY GCODE_TOOLS ${name})
 

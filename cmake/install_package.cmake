@@ -2,16 +2,18 @@
 #
 #   component "tools" (the default): bin/gc-*, share/man/man1/gc-*.1,
 #     share/bash-completion/completions/gc-*          -> gcode-tools_<v>_<arch>.deb
-#   component "dev": include/gcode/**, lib/libgcode.a, lib/cmake/gcode-tools/
-#     (find_package(gcode-tools) gives the target gcode-tools::gcode)
+#   component "dev": include/gcode/**, lib/libgcode.a, lib/libgcode_cli.a,
+#     lib/cmake/gcode-tools/ (find_package(gcode-tools) gives the targets
+#     gcode-tools::gcode, the library, and gcode-tools::gcode_cli, the
+#     command-line front end on top of it, for programs that look like gc tools)
 #                                                     -> gcode-tools-dev_<v>_<arch>.deb
 include(CMakePackageConfigHelpers)
 set(GCODE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/gcode-tools)
 
-install(TARGETS gcode EXPORT gcode-tools-targets
+install(TARGETS gcode gcode_cli EXPORT gcode-tools-targets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(DIRECTORY lib/include/gcode DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT dev)
+install(DIRECTORY lib/include/gcode cli/include/gcode DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT dev)
 install(FILES ${CMAKE_BINARY_DIR}/lib/generated/gcode/version.hpp
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/gcode COMPONENT dev)
 install(EXPORT gcode-tools-targets NAMESPACE gcode-tools:: DESTINATION ${GCODE_CMAKE_DIR} COMPONENT dev)

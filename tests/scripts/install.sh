@@ -8,7 +8,9 @@
 #   - a pipeline of installed tools works on the example file;
 #   - a small CMake project finds the package (find_package(gcode-tools)),
 #     links gcode-tools::gcode, and counts the example's layers as the
-#     installed gc-layers does.
+#     installed gc-layers does; a second program of it links
+#     gcode-tools::gcode_cli (the front end) and answers --version and a
+#     usage error as every gc tool does.
 # usage: install.sh BUILD_DIR SOURCE_DIR TOOL...
 set -euo pipefail
 build=$1 source=$2
@@ -64,7 +66,20 @@ set(CMAKE_CXX_STANDARD 20)
 find_package(gcode-tools 0.1 REQUIRED)
 add_executable(count-layers main.cpp)
 target_link_libraries(count-layers PRIVATE gcode-tools::gcode)
+add_executable(gc-hello hello.cpp)
+target_link_libraries(gc-hello PRIVATE gcode-tools::gcode_cli)
 CMAKE
+cat >"$work/consumer/hello.cpp" <<'CPP'
+// A tool of its own on the front end: the common options, messages and exit statuses.
+#include <gcode/cli/tool.hpp>
+
+int main(int argc, char** argv) {
+  gcode::cli::FilterOptions options;
+  gcode::cli::Tool tool("gc-hello", "gc-hello: says hello");
+  tool.add_filter_options(options, gcode::cli::kVerbosity);
+  return tool.run(argc, argv, [] { return 0; });
+}
+CPP
 cat >"$work/consumer/main.cpp" <<'CPP'
 // Counts the layers of a G-code file with libgcode's pipeline.
 #include <fcntl.h>
@@ -103,6 +118,14 @@ if cmake -S "$work/consumer" -B "$work/consumer/build" -DCMAKE_PREFIX_PATH="$pre
   version=$("$prefix/bin/gc-layers" --version | cut -d' ' -f2)
   got=$("$work/consumer/build/count-layers" "$cube")
   [ "$got" = "$version $direct" ] || fail "consumer says '$got', expected '$version $direct'"
+  check
+  got=$("$work/consumer/build/gc-hello" --version)
+  [ "$got" = "gc-hello $version" ] || fail "the consumer's own tool says '$got' to --version"
+  check
+  status=0
+  "$work/consumer/build/gc-hello" --no-such-option 2>"$work/hello.err" || status=$?
+  [ "$status" = 2 ] && grep -q '^gc-hello: .*(see gc-hello --help)$' "$work/hello.err" ||
+    fail "the consumer's own tool: a usage error gave status $status and '$(cat "$work/hello.err")'"
 else
   cat "$work/consumer.log" >&2
   fail "a project using find_package(gcode-tools) does not build"

@@ -58,7 +58,7 @@ for want in ./usr/include/gcode/version.hpp ./usr/include/gcode/cli/tool.hpp ./u
   check
   grep -qx -- "$want" "$work/dev.files" || fail "gcode-tools-dev lacks $want"
 done
-for pattern in '/libgcode\.a$' '/cmake/gcode-tools/gcode-toolsConfig\.cmake$' '/cmake/gcode-tools/gcode-tools-targets\.cmake$'; do
+for pattern in '/libgcode\.a$' '/libgcode_cli\.a$' '/cmake/gcode-tools/gcode-toolsConfig\.cmake$' '/cmake/gcode-tools/gcode-tools-targets\.cmake$'; do
   check
   grep -q -- "$pattern" "$work/dev.files" || fail "gcode-tools-dev has nothing matching $pattern"
 done

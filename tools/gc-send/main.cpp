@@ -1,7 +1,7 @@
 // gc-send: stream G-code to a printer over a serial port (or to the built-in
 // virtual printer), keeping the printer's buffers full without overrunning
 // them, and take pause/resume requests from a control FIFO while it prints.
-// The options are lib/cli/send_options.hpp; the work is lib/serial
+// The options are cli/send_options.hpp; the work is lib/serial
 // (send_job.hpp, send_session.hpp, print_control.hpp).
 #include <cstdio>
 
