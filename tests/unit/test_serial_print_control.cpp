@@ -384,6 +384,35 @@ TEST_CASE("print control: cancel leaves out what is not sent yet and parks from 
   CHECK(rig.sender().state() == SenderState::Done);
 }
 
+TEST_CASE("print control: a cancel after the whole file was handed over still parks and turns the heaters off",
+          "[serial][print_control]") {
+  Rig rig(kThreeLayers, 64);  // every command handed over: the sender was told the input ended
+  rig.ok(3);
+  REQUIRE(rig.sender().pending() == commands(kThreeLayers).size() - 7);
+  rig.command(ControlVerb::Cancel);
+  rig.run();
+  CHECK(rig.wire() == Lines{"G28", "G90", "M82", "M104 S200", "G92 E0", "G1 Z0.2 F600", "G1 X10 Y10 F3000",
+                            "G1 E-2 F2100", "G1 Z2.2 F600", "G1 X10 Y200 F3600",
+                            "M104 S0", "M140 S0", "M107", "M84", "M400"});
+  CHECK(rig.sender().state() == SenderState::Done);
+}
+
+TEST_CASE("print control: a pause in the end code after the whole file was handed over parks and resumes",
+          "[serial][print_control]") {
+  const std::string text = kThreeLayers + "G1 X0 Y0 F3000\nM84\n";
+  Rig rig(text, 64);
+  rig.run_until_sent("M104 S0");  // the end code under way
+  rig.command(ControlVerb::PauseNow);
+  rig.run();
+  CHECK(rig.control().state() == PrintState::Paused);
+  CHECK(rig.wire().back().find("Y200") != std::string::npos);  // parked
+  rig.command(ControlVerb::Resume);
+  rig.run();
+  CHECK(rig.sender().state() == SenderState::Done);
+  CHECK(rig.wire().back() == "M400");
+  CHECK(file_commands_on(rig.wire(), text) == commands(text));
+}
+
 TEST_CASE("print control: a cancel while paused does not park again", "[serial][print_control]") {
   Rig rig(kThreeLayers);
   const std::size_t parked = pause_in_layer_two(rig);

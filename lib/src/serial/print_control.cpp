@@ -290,6 +290,7 @@ void PrintControl::stop_at(const MachineState& at, const MachineState& resume_fr
 
 void PrintControl::submit_lines(const std::vector<std::string>& lines, int layer) {
   forget_recent();  // the newest commands are no longer the file's
+  sender_.reopen_input();  // the file may have ended: these are not the file's
   for (const std::string& l : lines) sender_.submit(l, 0, layer);
 }
 
@@ -297,6 +298,7 @@ void PrintControl::submit_lines(const std::vector<std::string>& lines, int layer
 // exactly.
 void PrintControl::submit_typed(std::string_view command) {
   forget_recent();
+  sender_.reopen_input();
   sender_.submit(command, 0, layer_);
   track(command, stop_.printer);
 }

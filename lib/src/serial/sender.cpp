@@ -154,6 +154,11 @@ void Sender::end_of_input() {
                             : std::string("nothing was printed: the input has no G-code command"));
 }
 
+void Sender::reopen_input() {
+  if (cancelled_ || !refusal_.empty() || finished()) return;
+  input_done_ = false;
+}
+
 void Sender::pump(double now) {
   fill(now);
   check_done(now);

@@ -112,6 +112,11 @@ class Sender : private TimeSink {
   }
   void submit(std::string_view command, std::uint64_t source_line, int layer);
   void end_of_input();
+  // The input had ended, but the print control adds lines of its own (a
+  // cancel's safe end, a pause block in the end code): they are taken, and
+  // end_of_input() ends the input again. Nothing after a refused line, a
+  // cancel or the end of the print.
+  void reopen_input();
   // Sends what the flow control allows now; call after submit/end_of_input.
   void pump(double now);
 
