@@ -123,6 +123,14 @@ PrintArea Filter::print_area() {
   return area;
 }
 
+void write_output_file(const std::string& path, const std::function<void(OutputBuffer&)>& fill) {
+  OutputFile file(path, std::string());
+  OutputBuffer buffer(file.fd());
+  fill(buffer);
+  buffer.flush();
+  file.commit();
+}
+
 void Filter::run() {
   e_mode();
   pipeline_.run(input_.fd());

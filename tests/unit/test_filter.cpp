@@ -238,3 +238,15 @@ TEST_CASE("filter: the bed from the file's config at either end", "[filter]") {
   });
   CHECK(gctest::read_file(head.output) == text);  // the header read ahead is written too
 }
+
+TEST_CASE("filter: a second file is written whole, or to standard output", "[filter]") {
+  Dir d;
+  const std::string path = d.path + "/picture.svg";
+  gcode::cli::write_output_file(path, [](gcode::OutputBuffer& out) {
+    out.write("<svg>");
+    out.write("</svg>\n");
+  });
+  CHECK(gctest::read_file(path) == "<svg></svg>\n");
+  CHECK(gctest::stdout_of([] { gcode::cli::write_output_file("", [](gcode::OutputBuffer& out) { out.write("x\n"); }); }) ==
+        "x\n");
+}

@@ -2,9 +2,6 @@
 // with seams the printer cannot tell (the splice of lib/transform/splice.hpp).
 #include <fmt/format.h>
 
-#include <map>
-#include <memory>
-
 #include "gcode/cli/filter.hpp"
 #include "gcode/cli/seam_options.hpp"
 #include "gcode/cli/tool.hpp"
@@ -17,28 +14,6 @@ struct Options {
   gcode::cli::FilterOptions io;
   gcode::LayerEditsText edits;
   gcode::SeamOptions seam;
-};
-
-// The other files (--with, --file), each opened and indexed once.
-struct OtherFiles {
-  std::map<std::string, std::unique_ptr<gcode::InputFile>> files;
-  std::map<std::string, std::unique_ptr<gcode::LayerIndex>> indexes;
-
-  std::vector<gcode::SpliceFile> open(const std::vector<std::string>& names, const gcode::LayerMarkers& markers) {
-    std::vector<gcode::SpliceFile> list;
-    for (const std::string& name : names) {
-      if (name.empty() || name == "-")
-        throw gcode::cli::UsageError("--with and --file need a file (standard input is the print)");
-      if (files.count(name) == 0) {
-        auto f = std::make_unique<gcode::InputFile>(name);
-        f->make_seekable();
-        indexes[name] = std::make_unique<gcode::LayerIndex>(f->fd(), name, markers);
-        files[name] = std::move(f);
-      }
-      list.push_back(gcode::SpliceFile{name, files[name]->fd(), indexes[name].get()});
-    }
-    return list;
-  }
 };
 
 }  // namespace
@@ -87,7 +62,7 @@ int main(int argc, char** argv) {
   return tool.run(argc, argv, [&] {
     gcode::Diagnostics diag = tool.diagnostics(o.io);
     gcode::cli::Filter run(o.io);
-    OtherFiles others;
+    gcode::cli::SpliceFiles others;  // --with and --file
     std::vector<gcode::SpliceFile> files = others.open(o.edits.files(), run.markers());
     int total = o.edits.needs_total() ? run.count_layers() : 0;
     int main_fd = -1;
@@ -96,14 +71,7 @@ int main(int argc, char** argv) {
       run.input().make_seekable();
       main_fd = run.input().fd();
     }
-    gcode::PrintArea area = run.print_area();
-    for (const gcode::SpliceFile& f : files) {
-      gcode::PrintArea theirs;
-      gcode::scan_file_limits(f.fd, theirs);
-      std::string d = gcode::printer_difference(area, theirs, f.name);
-      if (!d.empty()) diag.warn(d);
-    }
-    o.seam.max_z = area.has_max_z ? area.max_z : 0;
+    gcode::cli::splice_printer(run, files, o.seam, diag);
     gcode::LayerEditPlan plan(o.edits, main_fd, run.markers(), files, total, run.pipeline().precision().of('Z'), &diag,
                               "gc-swap-layer: ");
     gcode::SpliceStage splice(plan, run.pipeline().precision(), o.seam, &diag);

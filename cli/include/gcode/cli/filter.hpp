@@ -97,6 +97,12 @@ class Filter {
 // (`features`): a UsageError naming them and listing the file's names.
 void check_types(const std::vector<std::string>& wanted, const std::vector<std::string>& features);
 
+// A file a tool writes besides its G-code, or as its only output (layer
+// pictures, a lithophane's G-code and STL): `path` "" or "-" is standard
+// output; `fill` writes through the buffer, which is flushed and the file
+// closed once `fill` returned.
+void write_output_file(const std::string& path, const std::function<void(OutputBuffer&)>& fill);
+
 // Counts the layers of everything `fd` delivers (no output); `e_relative`:
 // 1 or 0 for a file that never sets the E mode, -1 to leave it to the file.
 int count_layers(int fd, const LayerMarkers& markers, int e_relative = -1);
