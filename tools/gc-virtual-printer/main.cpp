@@ -1,80 +1,19 @@
 // gc-virtual-printer: the Marlin model of gc-send's built-in virtual printer,
 // on a pseudo-terminal, so that any host (gc-send, printcore, OctoPrint) can
 // connect to it like a USB printer.
-#include <poll.h>
-#include <signal.h>
-#include <sys/signalfd.h>
-#include <unistd.h>
-
 #include <CLI/CLI.hpp>
-#include <fmt/format.h>
 
-#include <cstdio>
 #include <string>
 #include <vector>
 
-#include "gcode/serial/event_loop.hpp"
-#include "gcode/serial/port.hpp"
-#include "gcode/serial/virtual_link.hpp"
-#include "gcode/serial/virtual_printer.hpp"
-#include "gcode/core/file_io.hpp"
 #include "gcode/cli/tool.hpp"
-
-namespace {
+#include "gcode/serial/virtual_printer_runner.hpp"
 
 using namespace gcode::serial;
 
-struct Options {
-  std::string link;
-  std::string log;
-  std::vector<std::string> faults;
-  bool quiet = false;
-};
-
-int run(const Options& o, const VirtualPrinterConfig& config) {
-  sigset_t mask;
-  sigemptyset(&mask);
-  sigaddset(&mask, SIGINT);
-  sigaddset(&mask, SIGTERM);
-  sigaddset(&mask, SIGHUP);
-  sigprocmask(SIG_BLOCK, &mask, nullptr);
-  int sfd = signalfd(-1, &mask, SFD_CLOEXEC | SFD_NONBLOCK);
-
-  std::FILE* log = nullptr;
-  if (!o.log.empty()) {
-    log = std::fopen(o.log.c_str(), "w");
-    if (log == nullptr) throw std::runtime_error(fmt::format("cannot write {}", o.log));
-  }
-  EventLoop loop;
-  VirtualPrinter printer(config, log);
-  PseudoTerminal pty(o.link);
-  VirtualLink link(loop, printer, pty.master());
-  link.set_on_close([&loop] { loop.stop(); });
-  loop.add_fd(sfd, POLLIN, [&loop](short) { loop.stop(); });
-  if (!o.quiet)
-    std::fprintf(stderr, "gc-virtual-printer: %s -> %s, %g baud, time scale %g\n", o.link.c_str(),
-                 pty.slave_path().c_str(), config.baud, config.time_scale);
-  loop.run();
-
-  const VirtualPrinterStats& s = printer.stats();
-  if (log != nullptr) std::fclose(log);
-  if (!o.quiet)
-    std::fprintf(stderr,
-                 "gc-virtual-printer: executed %llu, accepted lines %llu, checksum errors %llu, line number errors "
-                 "%llu, overrun bytes %llu, planner starved %.2f %%%s\n",
-                 static_cast<unsigned long long>(s.executed), static_cast<unsigned long long>(s.accepted_lines),
-                 static_cast<unsigned long long>(s.checksum_errors),
-                 static_cast<unsigned long long>(s.line_number_errors),
-                 static_cast<unsigned long long>(s.overrun_bytes), 100 * printer.starvation(),
-                 link.closed() ? ", link dropped" : "");
-  ::close(sfd);
-  return 0;
-}
-
-}  // namespace
-
 int main(int argc, char** argv) {
-  Options o;
+  VirtualPrinterRun o;
+  std::vector<std::string> faults;
   VirtualPrinterConfig c;
   gcode::cli::Tool tool(
       "gc-virtual-printer",
@@ -103,7 +42,7 @@ int main(int argc, char** argv) {
                "M115 does not name the simulated BAUD and TIME_SCALE, as a real firmware behind a pty");
   app.add_option("--heat-rate", c.heat_rate, "Heating in degrees per second (default 10; the bed a third of it)")
       ->type_name("DEG_PER_S");
-  app.add_option("--fault", o.faults,
+  app.add_option("--fault", faults,
                  "Inject a fault, repeatable: corrupt=P drop-ok=P resend=P garbage=P busy=P (P per line), "
                  "silent-after=N halt-after=N disconnect-after=N (N commands), seed=S")
       ->type_name("KEY=VALUE");
@@ -112,12 +51,12 @@ int main(int argc, char** argv) {
   app.add_flag("-q,--quiet", o.quiet, "No messages on standard error");
   tool.check([&] {
     std::string opts;
-    for (const std::string& f : o.faults) opts += f + ",";
+    for (const std::string& f : faults) opts += f + ",";
     parse_virtual_options(opts, c);
     if (no_link_report) c.report_link = false;
     if (c.baud < 50 || c.queue < 1 || c.rx_buffer < 16 || c.max_line < 16 || c.planner < 1 || !(c.time_scale > 0))
       throw gcode::cli::UsageError(
           "--baud, --queue, --rx-buffer, --max-line, --planner and --time-scale need sensible values");
   });
-  return tool.run(argc, argv, [&] { return run(o, c); });
+  return tool.run(argc, argv, [&] { return run_virtual_printer(o, c); });
 }

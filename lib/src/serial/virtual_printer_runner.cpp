@@ -1,0 +1,81 @@
+#include "gcode/serial/virtual_printer_runner.hpp"
+
+#include <poll.h>
+#include <signal.h>
+#include <sys/signalfd.h>
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+
+#include "gcode/serial/event_loop.hpp"
+#include "gcode/serial/port.hpp"
+#include "gcode/serial/virtual_link.hpp"
+
+namespace gcode::serial {
+
+namespace {
+
+// The signals that end the run, taken from a descriptor so the loop sees
+// them between events (blocked for the rest of the process).
+class StopSignals {
+ public:
+  StopSignals() {
+    sigset_t mask;
+    sigemptyset(&mask);
+    sigaddset(&mask, SIGINT);
+    sigaddset(&mask, SIGTERM);
+    sigaddset(&mask, SIGHUP);
+    sigprocmask(SIG_BLOCK, &mask, nullptr);
+    fd_ = signalfd(-1, &mask, SFD_CLOEXEC | SFD_NONBLOCK);
+  }
+  ~StopSignals() { ::close(fd_); }
+  StopSignals(const StopSignals&) = delete;
+  StopSignals& operator=(const StopSignals&) = delete;
+  int fd() const { return fd_; }
+
+ private:
+  int fd_ = -1;
+};
+
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+
+}  // namespace
+
+std::string virtual_printer_summary(const VirtualPrinter& printer, bool link_dropped) {
+  const VirtualPrinterStats& s = printer.stats();
+  return fmt::format(
+      "executed {}, accepted lines {}, checksum errors {}, line number errors {}, overrun bytes {}, planner starved "
+      "{:.2f} %{}",
+      s.executed, s.accepted_lines, s.checksum_errors, s.line_number_errors, s.overrun_bytes,
+      100 * printer.starvation(), link_dropped ? ", link dropped" : "");
+}
+
+int run_virtual_printer(const VirtualPrinterRun& run, const VirtualPrinterConfig& config) {
+  StopSignals signals;
+  std::unique_ptr<std::FILE, FileCloser> log;
+  if (!run.log.empty()) {
+    log.reset(std::fopen(run.log.c_str(), "w"));
+    if (!log) throw std::runtime_error(fmt::format("cannot write {}", run.log));
+  }
+  EventLoop loop;
+  VirtualPrinter printer(config, log.get());
+  PseudoTerminal pty(run.link);
+  VirtualLink link(loop, printer, pty.master());
+  link.set_on_close([&loop] { loop.stop(); });
+  loop.add_fd(signals.fd(), POLLIN, [&loop](short) { loop.stop(); });
+  if (!run.quiet)
+    fmt::print(stderr, "{}: {} -> {}, {:g} baud, time scale {:g}\n", run.name, run.link, pty.slave_path(), config.baud,
+               config.time_scale);
+  loop.run();
+  log.reset();
+  if (!run.quiet) fmt::print(stderr, "{}: {}\n", run.name, virtual_printer_summary(printer, link.closed()));
+  return 0;
+}
+
+}  // namespace gcode::serial
