@@ -80,3 +80,17 @@ TEST_CASE("layer time: an empty layer gets a slot of zero", "[layer_time]") {
   CHECK(t.layers[0] > 1);
   CHECK(t.layers[2] > 1);
 }
+
+TEST_CASE("layer time: the change before and after, by layer and in total", "[layer_time]") {
+  LayerTimes before, after;
+  before.layers = {10, 20, 30};
+  after.layers = {10, 10, 15};
+  before.end = after.end = 40;
+  const std::vector<std::string> lines = gcode::time_change_lines(before, after, {2, 3, 4});
+  REQUIRE(lines.size() == 3);  // layer 4 is in neither: left out
+  CHECK(lines[0] == "layer 2: 20.0 s -> 10.0 s");
+  CHECK(lines[1] == "layer 3: 30.0 s -> 15.0 s");
+  CHECK(lines[2] == "estimated print time 0:01:40 -> 0:01:15 (-25.0 %)");
+  CHECK(gcode::time_change_lines(LayerTimes{}, LayerTimes{}, {}).back() ==
+        "estimated print time 0:00:00 -> 0:00:00 (+0.0 %)");
+}

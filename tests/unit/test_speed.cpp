@@ -337,3 +337,11 @@ TEST_CASE("speed options that make no sense are refused", "[speed][usage]") {
   CHECK_THROWS_WITH(refused([](SpeedOptions& o) { o.filament_diameter = 0; }).validate(), Catch::Contains("--filament"));
   CHECK_NOTHROW(SpeedOptions().validate());
 }
+
+TEST_CASE("speed: M220 B/R only where the file names Marlin 2, else S100", "[speed][m220]") {
+  CHECK(gcode::m220_restore_for_flavor("marlin2") == gcode::M220Restore::Backup);
+  CHECK(gcode::m220_restore_for_flavor("Marlin2") == gcode::M220Restore::Backup);
+  // Marlin 1.x, Klipper, RepRapFirmware ignore B/R: the printer would stay at the changed speed.
+  for (const char* flavor : {"marlin", "klipper", "reprapfirmware", ""})
+    CHECK(gcode::m220_restore_for_flavor(flavor) == gcode::M220Restore::Reset);
+}

@@ -1,5 +1,7 @@
 #include "gcode/report/layer_time.hpp"
 
+#include <fmt/format.h>
+
 namespace gcode {
 
 namespace {
@@ -39,6 +41,21 @@ void LayerTimer::on_time(std::int64_t tag, double seconds) {
     if (times_.layers.size() <= index) times_.layers.resize(index + 1, 0.0);
     times_.layers[index] += seconds;
   }
+}
+
+std::vector<std::string> time_change_lines(const LayerTimes& before, const LayerTimes& after,
+                                           const std::vector<int>& layers) {
+  auto seconds = [](double s) { return fmt::format("{:.1f} s", s); };
+  std::vector<std::string> lines;
+  for (int layer : layers) {
+    auto i = static_cast<std::size_t>(layer - 1);
+    if (i < before.layers.size() && i < after.layers.size())
+      lines.push_back(fmt::format("layer {}: {} -> {}", layer, seconds(before.layers[i]), seconds(after.layers[i])));
+  }
+  const double t0 = before.total(), t1 = after.total();
+  lines.push_back(fmt::format("estimated print time {} -> {} ({:+.1f} %)", format_duration(t0), format_duration(t1),
+                              t0 > 0 ? 100 * (t1 - t0) / t0 : 0.0));
+  return lines;
 }
 
 }  // namespace gcode

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "gcode/core/diagnostics.hpp"
+#include "gcode/core/feature.hpp"
 #include "gcode/core/line_edit.hpp"
 #include "gcode/core/number.hpp"
 
@@ -61,6 +62,10 @@ std::string number(double v, int decimals) {
 }
 
 }  // namespace
+
+M220Restore m220_restore_for_flavor(std::string_view flavor) {
+  return same_name(flavor, "marlin2") ? M220Restore::Backup : M220Restore::Reset;
+}
 
 void SpeedOptions::validate() const {
   auto bad = [](double v) { return !std::isfinite(v) || v < 0; };

@@ -2,6 +2,7 @@
 // Print time per layer: an Estimator fed with the pipeline's lines, its time
 // booked to the start code, each layer, and the end code. A report stage.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "gcode/report/estimator.hpp"
@@ -18,6 +19,12 @@ struct LayerTimes {
   // Seconds from the start of the file to the end of layer `index` (1-based).
   double cumulative(int index) const;
 };
+
+// The estimate before and after a change, for the user: one line for each
+// of `layers` both know ("layer 4: 12.3 s -> 8.1 s"), then the total
+// ("estimated print time 0:12:03 -> 0:10:40 (-11.5 %)").
+std::vector<std::string> time_change_lines(const LayerTimes& before, const LayerTimes& after,
+                                           const std::vector<int>& layers);
 
 class LayerTimer : public Stage, private TimeSink {
  public:

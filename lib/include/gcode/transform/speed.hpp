@@ -29,6 +29,7 @@
 // after it: the firmware then scales every move, travel and retraction too.
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "gcode/core/fixed.hpp"
@@ -45,6 +46,12 @@ enum class M220Restore : std::uint8_t {
   Reset,   // M220 S100
   Backup,  // M220 B at the start, M220 R at the end (Marlin 2, Prusa firmware)
 };
+
+// --m220-restore auto: the restore the firmware a file names (its slicer's
+// flavor) is known to take. M220 B/R where it says Marlin 2 (Marlin 2 and
+// Prusa firmware back the factor up); elsewhere B and R may be ignored, which
+// would leave the printer at the changed speed, so M220 S100.
+M220Restore m220_restore_for_flavor(std::string_view flavor);
 
 struct SpeedOptions {
   // The change, one of: a factor; an absolute speed for every changed move;
