@@ -436,4 +436,21 @@ std::string layer_sheet_svg(const std::vector<LayerDrawing>& drawings, const Svg
   return out;
 }
 
+void write_layer_pictures(std::vector<LayerDrawing>& drawings, const SvgOptions& options,
+                          const std::vector<double>& layer_seconds, bool sheet, const std::string& out,
+                          const std::function<void(const std::string& path, const std::string& svg)>& write) {
+  if (drawings.empty()) throw std::runtime_error("no layer matches the selection");
+  for (LayerDrawing& d : drawings) {
+    auto i = static_cast<std::size_t>(d.layer - 1);
+    d.seconds = i < layer_seconds.size() ? layer_seconds[i] : -1;
+  }
+  if (sheet) {
+    write(out, layer_sheet_svg(drawings, options));
+    return;
+  }
+  if (drawings.size() > 1 && !has_layer_placeholder(out))
+    throw std::runtime_error("several layers selected: give --svg-out a pattern such as layer-{}.svg");
+  for (const LayerDrawing& d : drawings) write(expand_layer_pattern(out, d.layer), layer_svg(d, options));
+}
+
 }  // namespace gcode

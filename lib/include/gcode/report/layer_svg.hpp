@@ -85,6 +85,16 @@ std::string layer_sheet_svg(const std::vector<LayerDrawing>& drawings, const Svg
 std::string expand_layer_pattern(std::string_view pattern, int layer);
 bool has_layer_placeholder(std::string_view pattern);
 
+// --svg and --svg-sheet: the drawings, each given its layer's time from
+// `layer_seconds` ([i] = layer i + 1, when known), as one sheet (`sheet`) or
+// one picture a layer, each handed to `write` with its path: `out`, or with
+// several layers `out` expanded by layer (a pattern such as layer-{}.svg).
+// Throws std::runtime_error when no layer was drawn, or when several
+// pictures would go to one path.
+void write_layer_pictures(std::vector<LayerDrawing>& drawings, const SvgOptions& options,
+                          const std::vector<double>& layer_seconds, bool sheet, const std::string& out,
+                          const std::function<void(const std::string& path, const std::string& svg)>& write);
+
 // A fixed colour per feature name (slicers' names, case-insensitive), as "#rrggbb".
 std::string feature_color(std::string_view name);
 
