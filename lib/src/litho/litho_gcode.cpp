@@ -265,15 +265,11 @@ std::vector<std::string> litho_parameters(const LithophanePlanner& planner, cons
   return p;
 }
 
-LithoGcodeStats write_litho_gcode(const LithophanePlanner& planner, const LithoGcodeOptions& options,
-                                  const TextOut& out) {
-  options.validate();
-  const LithoOptions& o = planner.options();
-  LithoGcodeStats stats;
-  stats.layers = planner.layer_count();
-  LithoLayer layer;
-  Point head;  // where each layer ends, for the next one's order (path_order.hpp)
-  // First pass: totals for the header.
+namespace {
+
+// The first pass over the layers: the totals for the header. `head` ends
+// where the last layer ends, as the second pass finds it.
+void add_up_layers(const LithophanePlanner& planner, LithoLayer& layer, Point& head, LithoGcodeStats& stats) {
   for (int i = 0; i < planner.layer_count(); ++i) {
     plan_ordered_layer(planner, i, layer, head);
     stats.volume += layer.stats.volume;
@@ -282,20 +278,15 @@ LithoGcodeStats write_litho_gcode(const LithophanePlanner& planner, const LithoG
     stats.clamped_slow += layer.stats.clamped_slow;
   }
   stats.filament = stats.volume / planner.filament_area();
+}
 
-  auto emit = [&](std::string& text) {
-    stats.bytes += text.size();
-    out(text);
-    text.clear();
-  };
-
-  Emitter e(options, planner.filament_area(), o.layer_height);
-  const BedBounds bounds = litho_bounds(planner);
-  const double h = o.layer_height;
+// Cura's header (time, filament, the part's box) and the parameters.
+void write_header(Emitter& e, const LithophanePlanner& planner, const LithoGcodeOptions& options,
+                  const LithoGcodeStats& stats, const BedBounds& bounds) {
   e.line(";FLAVOR:Marlin");
   if (options.estimated_seconds > 0) e.line(fmt::format(";TIME:{}", std::lround(options.estimated_seconds)));
   e.line(fmt::format(";Filament used: {}m", num(stats.filament / 1000, 5)));
-  e.line(fmt::format(";Layer height: {}", num(h)));
+  e.line(fmt::format(";Layer height: {}", num(planner.options().layer_height)));
   e.line(fmt::format(";MINX:{}", num(bounds.min_x)));
   e.line(fmt::format(";MINY:{}", num(bounds.min_y)));
   e.line(fmt::format(";MINZ:{}", num(planner.layer_z(0))));
@@ -308,36 +299,74 @@ LithoGcodeStats write_litho_gcode(const LithophanePlanner& planner, const LithoG
   for (const std::string& p : litho_parameters(planner, options)) e.line(";  " + p);
   e.line(fmt::format(";  pieces = {}, clamped to max speed = {}, to min speed = {}", stats.pieces, stats.clamped_fast,
                      stats.clamped_slow));
+}
 
-  if (options.start_code.empty()) {
-    // Heat, home, then a purge line 5 mm in front of the part at first-layer height.
-    const double purge_y = bounds.min_y - 5;
-    const double purge_x0 = bounds.min_x;
-    const double purge_x1 = std::max(bounds.max_x, bounds.min_x + 20);
-    const double purge_volume = o.line_width * h * (purge_x1 - purge_x0) * 1.2;
-    e.line(fmt::format("M140 S{} ; bed", num(options.bed_temp, 0)));
-    e.line(fmt::format("M104 S{} ; nozzle", num(options.nozzle_temp, 0)));
-    e.line(fmt::format("M190 S{}", num(options.bed_temp, 0)));
-    e.line(fmt::format("M109 S{}", num(options.nozzle_temp, 0)));
-    e.line("G28 ; home all axes");
-    e.line("G90");
-    e.line("M83 ; relative extrusion");
-    e.line("M107");
-    e.line(fmt::format("G0 F{} Z2", num(options.travel_speed * 60, 0)));
-    e.line(fmt::format("G0 X{} Y{}", num(purge_x0), num(purge_y)));
-    e.line(fmt::format("G0 Z{}", num(planner.layer_z(0))));
-    e.line(fmt::format("G1 F1200 X{} E{} ; purge line", num(purge_x1),
-                       num(purge_volume / planner.filament_area(), kE)));
-    e.set_position({purge_x1, purge_y}, planner.layer_z(0));
-  } else {
+// The built-in start: heat, home, then a purge line 5 mm in front of the
+// part at first-layer height; or the user's, with the modes the layers need.
+void write_start(Emitter& e, const LithophanePlanner& planner, const LithoGcodeOptions& options,
+                 const BedBounds& bounds) {
+  if (!options.start_code.empty()) {
     e.text() += ensure_newline(options.start_code);
     e.set_position({bounds.min_x, bounds.min_y - 5}, 5);  // unknown: make the first layer travel explicitly
     e.line("G90");
     e.line("M83 ; relative extrusion: each E below is one piece's filament");
+    return;
   }
+  const LithoOptions& o = planner.options();
+  const double purge_y = bounds.min_y - 5;
+  const double purge_x0 = bounds.min_x;
+  const double purge_x1 = std::max(bounds.max_x, bounds.min_x + 20);
+  const double purge_volume = o.line_width * o.layer_height * (purge_x1 - purge_x0) * 1.2;
+  e.line(fmt::format("M140 S{} ; bed", num(options.bed_temp, 0)));
+  e.line(fmt::format("M104 S{} ; nozzle", num(options.nozzle_temp, 0)));
+  e.line(fmt::format("M190 S{}", num(options.bed_temp, 0)));
+  e.line(fmt::format("M109 S{}", num(options.nozzle_temp, 0)));
+  e.line("G28 ; home all axes");
+  e.line("G90");
+  e.line("M83 ; relative extrusion");
+  e.line("M107");
+  e.line(fmt::format("G0 F{} Z2", num(options.travel_speed * 60, 0)));
+  e.line(fmt::format("G0 X{} Y{}", num(purge_x0), num(purge_y)));
+  e.line(fmt::format("G0 Z{}", num(planner.layer_z(0))));
+  e.line(fmt::format("G1 F1200 X{} E{} ; purge line", num(purge_x1), num(purge_volume / planner.filament_area(), kE)));
+  e.set_position({purge_x1, purge_y}, planner.layer_z(0));
+}
+
+// The built-in end (retract, lift, heaters and fan off, motors off) or the user's.
+void write_end(Emitter& e, const LithophanePlanner& planner, const LithoGcodeOptions& options) {
+  if (!options.end_code.empty()) {
+    e.text() += ensure_newline(options.end_code);
+    return;
+  }
+  e.retract(true);
+  e.line(fmt::format("G0 F600 Z{} ; lift", num(std::max(e.z() + 10, planner.layer_z(planner.layer_count() - 1) + 10))));
+  e.line("M104 S0");
+  e.line("M140 S0");
+  e.line("M107");
+  e.line("M84 ; motors off");
+}
+
+}  // namespace
+
+LithoGcodeStats write_litho_gcode(const LithophanePlanner& planner, const LithoGcodeOptions& options,
+                                  const TextOut& out) {
+  options.validate();
+  LithoGcodeStats stats;
+  stats.layers = planner.layer_count();
+  LithoLayer layer;
+  Point head;  // where each layer ends, for the next one's order (path_order.hpp)
+  add_up_layers(planner, layer, head, stats);
+  auto emit = [&](std::string& text) {
+    stats.bytes += text.size();
+    out(text);
+    text.clear();
+  };
+  Emitter e(options, planner.filament_area(), planner.options().layer_height);
+  const BedBounds bounds = litho_bounds(planner);
+  write_header(e, planner, options, stats, bounds);
+  write_start(e, planner, options, bounds);
   e.line(fmt::format(";LAYER_COUNT:{}", planner.layer_count()));
   emit(e.text());
-
   for (int i = 0; i < planner.layer_count(); ++i) {
     plan_ordered_layer(planner, i, layer, head);
     e.line(fmt::format(";LAYER:{}", i));
@@ -346,19 +375,9 @@ LithoGcodeStats write_litho_gcode(const LithophanePlanner& planner, const LithoG
     for (const Path& p : layer.paths) e.path(p, layer.z);
     emit(e.text());
   }
-
   stats.filament = e.filament_written();
   stats.volume = stats.filament * planner.filament_area();
-  if (options.end_code.empty()) {
-    e.retract(true);
-    e.line(fmt::format("G0 F600 Z{} ; lift", num(std::max(e.z() + 10, planner.layer_z(planner.layer_count() - 1) + 10))));
-    e.line("M104 S0");
-    e.line("M140 S0");
-    e.line("M107");
-    e.line("M84 ; motors off");
-  } else {
-    e.text() += ensure_newline(options.end_code);
-  }
+  write_end(e, planner, options);
   emit(e.text());
   return stats;
 }

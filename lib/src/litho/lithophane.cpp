@@ -267,23 +267,19 @@ void LithophanePlanner::plan_layer(int index, LithoLayer& out) const {
   out.paths.clear();
   out.stats = {};
   const double factor = index == 0 ? options_.first_layer_factor : 1.0;
-  const double fill_rate = fill_rate_ * factor;
-  const double wall_rate = wall_rate_ * factor;
-  const double lw = options_.line_width;
-  const double length = map_.length();
-  const double zs = out.sample_z;
-
-  // Sample points: the passes' span, from one wall's end to the other's, or the whole circle.
   std::vector<double> s;
   std::vector<Column> cols;
-  const double first = map_.closed() ? 0.0 : lw;
-  const double span = map_.closed() ? length : length - 2 * lw;
-  const int n = std::max(map_.closed() ? 16 : 1, static_cast<int>(std::ceil(span / options_.resolution - 1e-9)));
-  s.reserve(static_cast<std::size_t>(n) * 2 + 1);
-  cols.reserve(static_cast<std::size_t>(n) * 2 + 1);
-  // Candidates: every resolution step and the picture's knots between them;
-  // kept: those the surface, the longest piece or the pass count need.
-  std::vector<double> cand;
+  sample_layer(out.sample_z, s, cols);
+  if (map_.closed())
+    plan_wall_rings(s, cols, wall_rate_ * factor, out);
+  else
+    plan_wall_loop(s, cols, wall_rate_ * factor, out);
+  plan_fill(s, cols, fill_rate_ * factor, out);
+}
+
+// Candidates for the sample points over [first, first + span]: every
+// resolution step (`n` of them) and the picture's knots between them.
+void LithophanePlanner::sample_candidates(double first, double span, int n, std::vector<double>& cand) const {
   cand.reserve(static_cast<std::size_t>(n) * 2 + 1);
   for (int k = 0; k < n; ++k) {
     const double grid = first + span * k / n;
@@ -296,118 +292,190 @@ void LithophanePlanner::plan_layer(int index, LithoLayer& out) const {
   }
   if (first + span - cand.back() < options_.min_piece && cand.size() > 1) cand.pop_back();
   cand.push_back(first + span);
-  std::vector<char> keep;
-  keep_points(cand, zs, keep);
+}
+
+// The sample points of a layer as they are laid down, one kept point after
+// the other: each stretch from the last point cut so that no bead beside
+// another leaves a gap; a pass that begins or ends gets its own piece.
+struct LithophanePlanner::SampleRun {
+  const LithophanePlanner& planner;
+  double zs;                  // the height sampled
+  double x0;                  // a flat plate's written X at s = 0
+  std::vector<double>& s;
+  std::vector<Column>& cols;
+  double s_prev = 0;
+  Column c_prev{};
+
   // A flat plate's sample points sit on the 0.0001 mm grid of the written X
   // (X = the plate's left end + s), so every piece's extent along the plate
   // is exactly what was planned, however short the piece.
-  const double x0 = point_at(0, 0).x;
-  auto snap = [&](double v) { return map_.closed() ? v : std::round((x0 + v) * 1e4) / 1e4 - x0; };
-  double s_prev = snap(first);
-  Column c_prev = column(s_prev, zs);
-  for (std::size_t k = 1; k < cand.size(); ++k) {
-    if (!keep[k]) continue;
-    const double s_to = snap(cand[k]);
-    if (!(s_to > s_prev)) continue;
-    // Each stretch between kept points is cut so that no bead beside
-    // another leaves a gap; a pass that begins or ends gets its own piece.
-    auto stretch = [&](double end, const Column& c_end, int cuts) {
-      s.push_back(s_prev);
-      cols.push_back(c_prev);
-      for (int j = 1; j < cuts; ++j) {
-        const double at = snap(s_prev + (end - s_prev) * j / cuts);
-        if (!(at > s.back() && at < end)) continue;
-        s.push_back(at);
-        cols.push_back(column(at, zs));
-      }
-      s_prev = end;
-      c_prev = c_end;
-    };
-    const Column c_to = column(s_to, zs);
-    if ((c_prev.gap > 0) != (c_to.gap > 0)) {
-      // A pass begins or ends here: it starts at min pass width while the
-      // walls step from sharing the band to one line width each. That step
-      // gets a piece of its own, so the beads on either side of it change
-      // smoothly and cutting can close their gaps. Across the step the walls
-      // change by min pass / 2 and the pass by min pass, plus the thickness's
-      // slope x the piece's length: the piece is short enough to keep
-      // neighbours within the edge gap (down to 0.001 mm), else min piece.
-      const double slope = std::abs(c_to.t - c_prev.t) / (s_to - s_prev);
-      const double room = 4 * options_.edge_gap - options_.min_pass_width / 2;
-      const double jump =
-          room > 0 && slope > 0 ? std::clamp(room / slope, 0.001, 2 * options_.min_piece) : 2 * options_.min_piece;
-      double a = s_prev, b = s_to;  // a on s_prev's side of the switch, b on s_to's
-      while (b - a > jump) {
-        const double mid = (a + b) / 2;
-        ((column(mid, zs).gap > 0) == (c_prev.gap > 0) ? a : b) = mid;
-      }
-      // On the grid, each still on its side of the switch.
-      const double unit = map_.closed() ? 0.0 : 1e-4;
-      a = snap(a);
-      while (a > s_prev && (column(a, zs).gap > 0) != (c_prev.gap > 0)) a = std::max(s_prev, a - unit);
-      b = snap(b);
-      while (b < s_to && (column(b, zs).gap > 0) != (c_to.gap > 0)) b = std::min(s_to, b + unit);
-      // No sliver of a piece on either side where the step's piece may take it in.
-      if (a - s_prev < options_.min_piece && b - s_prev <= jump) a = s_prev;
-      if (s_to - b < options_.min_piece && s_to - a <= jump) b = s_to;
-      const Column ca = column(a, zs);
-      const Column cb = column(b, zs);
-      if (a > s_prev) stretch(a, ca, cuts_between(c_prev, ca, a - s_prev));
-      stretch(b, cb, 1);
-      if (b < s_to) stretch(s_to, c_to, cuts_between(cb, c_to, s_to - b));
-    } else {
-      stretch(s_to, c_to, cuts_between(c_prev, c_to, s_to - s_prev));
-    }
-  }
-  s.push_back(s_prev);
-  cols.push_back(c_prev);
-  if (map_.closed()) cols.back() = cols.front();  // the same column, not a second sample of it
+  double snap(double v) const { return planner.map_.closed() ? v : std::round((x0 + v) * 1e4) / 1e4 - x0; }
+  Column column(double at) const { return planner.column(at, zs); }
+  bool has_pass(double at) const { return column(at).gap > 0; }
 
-  auto wall_strip = [&](double s0, const Column& c0, double s1, const Column& c1, bool outer) {
-    return outer ? Strip{s0, c0.t - c0.wall, c0.t, s1, c1.t - c1.wall, c1.t} : Strip{s0, 0, c0.wall, s1, 0, c1.wall};
-  };
-
-  if (map_.closed()) {
-    // Outer ring, then inner ring, as the paper prints them; both start at s = 0.
-    for (bool outer : {true, false}) {
-      Path path;
-      path.role = outer ? PathRole::WallOuter : PathRole::WallInner;
-      const double mid0 = outer ? cols[0].t - cols[0].wall / 2 : cols[0].wall / 2;
-      path.start = point_at(0, mid0);
-      for (std::size_t k = 0; k + 1 < s.size(); ++k)
-        add_strip(wall_strip(s[k], cols[k], s[k + 1], cols[k + 1], outer), wall_rate, path, out.stats);
-      if (!path.pieces.empty()) path.pieces.back().to = path.start;  // close the ring exactly
-      out.paths.push_back(std::move(path));
-    }
-  } else {
-    // One loop: the inner wall left to right along the base, a cap across the
-    // right end, the outer wall back along the picture, a cap across the left end.
-    const double left = lw / 2;
-    const double right = length - lw / 2;
-    const Column cl = column(left, zs);
-    const Column cr = column(right, zs);
-    Path inner;
-    inner.role = PathRole::WallInner;
-    inner.start = point_at(left, cl.wall / 2);
-    add_strip(wall_strip(left, cl, s[0], cols[0], false), wall_rate, inner, out.stats);
-    const std::size_t last = s.size() - 1;
-    for (std::size_t k = 0; k < last; ++k)
-      add_strip(wall_strip(s[k], cols[k], s[k + 1], cols[k + 1], false), wall_rate, inner, out.stats);
-    add_strip(wall_strip(s[last], cols[last], right, cr, false), wall_rate, inner, out.stats);
-    Path outer;
-    outer.role = PathRole::WallOuter;
-    outer.start = end_of(inner);
-    add_cap(outer.start, point_at(right, cr.t - cr.wall / 2), wall_rate, outer, out.stats);
-    add_strip(wall_strip(right, cr, s[last], cols[last], true), wall_rate, outer, out.stats);
-    for (std::size_t k = last; k > 0; --k)
-      add_strip(wall_strip(s[k], cols[k], s[k - 1], cols[k - 1], true), wall_rate, outer, out.stats);
-    add_strip(wall_strip(s[0], cols[0], left, cl, true), wall_rate, outer, out.stats);
-    add_cap(end_of(outer), inner.start, wall_rate, outer, out.stats);
-    out.paths.push_back(std::move(inner));
-    out.paths.push_back(std::move(outer));
+  void start(double first) {
+    s_prev = snap(first);
+    c_prev = column(s_prev);
   }
-  plan_fill(s, cols, fill_rate, out);
+
+  void stretch(double end, const Column& c_end, int cuts) {
+    s.push_back(s_prev);
+    cols.push_back(c_prev);
+    for (int j = 1; j < cuts; ++j) {
+      const double at = snap(s_prev + (end - s_prev) * j / cuts);
+      if (!(at > s.back() && at < end)) continue;
+      s.push_back(at);
+      cols.push_back(column(at));
+    }
+    s_prev = end;
+    c_prev = c_end;
+  }
+
+  void to(double kept) {
+    const double s_to = snap(kept);
+    if (!(s_to > s_prev)) return;
+    const Column c_to = column(s_to);
+    if ((c_prev.gap > 0) != (c_to.gap > 0))
+      across_switch(s_to, c_to);
+    else
+      stretch(s_to, c_to, planner.cuts_between(c_prev, c_to, s_to - s_prev));
+  }
+
+  // A pass begins or ends between here and s_to: it starts at min pass width
+  // while the walls step from sharing the band to one line width each. That
+  // step gets a piece of its own, so the beads on either side of it change
+  // smoothly and cutting can close their gaps. Across the step the walls
+  // change by min pass / 2 and the pass by min pass, plus the thickness's
+  // slope x the piece's length: the piece is short enough to keep
+  // neighbours within the edge gap (down to 0.001 mm), else min piece.
+  void across_switch(double s_to, const Column& c_to) {
+    const LithoOptions& o = planner.options_;
+    const double slope = std::abs(c_to.t - c_prev.t) / (s_to - s_prev);
+    const double room = 4 * o.edge_gap - o.min_pass_width / 2;
+    const double jump = room > 0 && slope > 0 ? std::clamp(room / slope, 0.001, 2 * o.min_piece) : 2 * o.min_piece;
+    double a = s_prev, b = s_to;  // a on s_prev's side of the switch, b on s_to's
+    while (b - a > jump) {
+      const double mid = (a + b) / 2;
+      (has_pass(mid) == (c_prev.gap > 0) ? a : b) = mid;
+    }
+    // On the grid, each still on its side of the switch.
+    const double unit = planner.map_.closed() ? 0.0 : 1e-4;
+    a = snap(a);
+    while (a > s_prev && has_pass(a) != (c_prev.gap > 0)) a = std::max(s_prev, a - unit);
+    b = snap(b);
+    while (b < s_to && has_pass(b) != (c_to.gap > 0)) b = std::min(s_to, b + unit);
+    // No sliver of a piece on either side where the step's piece may take it in.
+    if (a - s_prev < o.min_piece && b - s_prev <= jump) a = s_prev;
+    if (s_to - b < o.min_piece && s_to - a <= jump) b = s_to;
+    const Column ca = column(a);
+    const Column cb = column(b);
+    if (a > s_prev) stretch(a, ca, planner.cuts_between(c_prev, ca, a - s_prev));
+    stretch(b, cb, 1);
+    if (b < s_to) stretch(s_to, c_to, planner.cuts_between(cb, c_to, s_to - b));
+  }
+
+  void finish() {
+    s.push_back(s_prev);
+    cols.push_back(c_prev);
+    if (planner.map_.closed()) cols.back() = cols.front();  // the same column, not a second sample of it
+  }
+};
+
+// Sample points: the passes' span, from one wall's end to the other's, or the
+// whole circle. Candidates: every resolution step and the picture's knots
+// between them; kept: those the surface, the longest piece or the pass count need.
+void LithophanePlanner::sample_layer(double zs, std::vector<double>& s, std::vector<Column>& cols) const {
+  const double lw = options_.line_width;
+  const double length = map_.length();
+  const double first = map_.closed() ? 0.0 : lw;
+  const double span = map_.closed() ? length : length - 2 * lw;
+  const int n = std::max(map_.closed() ? 16 : 1, static_cast<int>(std::ceil(span / options_.resolution - 1e-9)));
+  s.reserve(static_cast<std::size_t>(n) * 2 + 1);
+  cols.reserve(static_cast<std::size_t>(n) * 2 + 1);
+  std::vector<double> cand;
+  sample_candidates(first, span, n, cand);
+  std::vector<char> keep;
+  keep_points(cand, zs, keep);
+  SampleRun run{*this, zs, point_at(0, 0).x, s, cols, 0, {}};
+  run.start(first);
+  for (std::size_t k = 1; k < cand.size(); ++k)
+    if (keep[k]) run.to(cand[k]);
+  run.finish();
 }
+
+LithophanePlanner::Strip LithophanePlanner::wall_strip(double s0, const Column& c0, double s1, const Column& c1,
+                                                       bool outer) {
+  return outer ? Strip{s0, c0.t - c0.wall, c0.t, s1, c1.t - c1.wall, c1.t} : Strip{s0, 0, c0.wall, s1, 0, c1.wall};
+}
+
+// A cylinder's walls: the outer ring, then the inner ring, as the paper
+// prints them; both start at s = 0.
+void LithophanePlanner::plan_wall_rings(const std::vector<double>& s, const std::vector<Column>& cols, double rate,
+                                        LithoLayer& out) const {
+  for (bool outer : {true, false}) {
+    Path path;
+    path.role = outer ? PathRole::WallOuter : PathRole::WallInner;
+    const double mid0 = outer ? cols[0].t - cols[0].wall / 2 : cols[0].wall / 2;
+    path.start = point_at(0, mid0);
+    for (std::size_t k = 0; k + 1 < s.size(); ++k)
+      add_strip(wall_strip(s[k], cols[k], s[k + 1], cols[k + 1], outer), rate, path, out.stats);
+    if (!path.pieces.empty()) path.pieces.back().to = path.start;  // close the ring exactly
+    out.paths.push_back(std::move(path));
+  }
+}
+
+// A flat plate's walls, one loop: the inner wall left to right along the
+// base, a cap across the right end, the outer wall back along the picture,
+// a cap across the left end.
+void LithophanePlanner::plan_wall_loop(const std::vector<double>& s, const std::vector<Column>& cols, double rate,
+                                       LithoLayer& out) const {
+  const double lw = options_.line_width;
+  const double zs = out.sample_z;
+  const double left = lw / 2;
+  const double right = map_.length() - lw / 2;
+  const Column cl = column(left, zs);
+  const Column cr = column(right, zs);
+  Path inner;
+  inner.role = PathRole::WallInner;
+  inner.start = point_at(left, cl.wall / 2);
+  add_strip(wall_strip(left, cl, s[0], cols[0], false), rate, inner, out.stats);
+  const std::size_t last = s.size() - 1;
+  for (std::size_t k = 0; k < last; ++k)
+    add_strip(wall_strip(s[k], cols[k], s[k + 1], cols[k + 1], false), rate, inner, out.stats);
+  add_strip(wall_strip(s[last], cols[last], right, cr, false), rate, inner, out.stats);
+  Path outer;
+  outer.role = PathRole::WallOuter;
+  outer.start = end_of(inner);
+  add_cap(outer.start, point_at(right, cr.t - cr.wall / 2), rate, outer, out.stats);
+  add_strip(wall_strip(right, cr, s[last], cols[last], true), rate, outer, out.stats);
+  for (std::size_t k = last; k > 0; --k)
+    add_strip(wall_strip(s[k], cols[k], s[k - 1], cols[k - 1], true), rate, outer, out.stats);
+  add_strip(wall_strip(s[0], cols[0], left, cl, true), rate, outer, out.stats);
+  add_cap(end_of(outer), inner.start, rate, outer, out.stats);
+  out.paths.push_back(std::move(inner));
+  out.paths.push_back(std::move(outer));
+}
+
+// Where the passes lie: vertex i (sample point i; on a cylinder it may go
+// past the seam: index modulo m, s unwrapped) and the depths of pass j of
+// `count` side by side there.
+struct LithophanePlanner::FillGrid {
+  const std::vector<double>& s;
+  const std::vector<Column>& cols;
+  int m;        // pieces
+  bool cyclic;  // a cylinder
+  double length;
+
+  double s_of(int i) const {
+    return cyclic ? s[static_cast<std::size_t>(i % m)] + (i / m) * length : s[static_cast<std::size_t>(i)];
+  }
+  const Column& col_of(int i) const { return cols[static_cast<std::size_t>(cyclic ? i % m : i)]; }
+  void depth(int i, int j, int count, double& a, double& b) const {
+    const Column& c = col_of(i);
+    a = c.wall + c.gap * j / count;
+    b = c.wall + c.gap * (j + 1) / count;
+  }
+};
 
 // The passes between the walls. Piece k (from s[k] to s[k+1]) carries the
 // fewest equal passes that keep each at most max pass width at both its ends;
@@ -417,47 +485,19 @@ void LithophanePlanner::plan_fill(const std::vector<double>& s, const std::vecto
                                   LithoLayer& out) const {
   const int m = static_cast<int>(s.size()) - 1;  // pieces
   const bool cyclic = map_.closed();
-  const double length = map_.length();
   std::vector<int> passes(static_cast<std::size_t>(m));
   for (int k = 0; k < m; ++k) {
     const double g = std::max(cols[k].gap, cols[k + 1].gap);
     passes[k] = g > 0 ? std::max(1, static_cast<int>(std::ceil(g / options_.max_pass_width - 1e-9))) : 0;
     out.stats.max_passes = std::max(out.stats.max_passes, passes[k]);
   }
-  // Vertex i of a run may go past the seam of a cylinder: index modulo m, s unwrapped.
-  auto s_of = [&](int i) {
-    return cyclic ? s[static_cast<std::size_t>(i % m)] + (i / m) * length : s[static_cast<std::size_t>(i)];
-  };
-  auto col_of = [&](int i) -> const Column& { return cols[static_cast<std::size_t>(cyclic ? i % m : i)]; };
-  auto depth = [&](int i, int j, int count, double& a, double& b) {
-    const Column& c = col_of(i);
-    a = c.wall + c.gap * j / count;
-    b = c.wall + c.gap * (j + 1) / count;
-  };
-
+  const FillGrid grid{s, cols, m, cyclic, map_.length()};
   Point cur = out.paths.empty() ? Point{} : end_of(out.paths.back());
   const bool ring = cyclic && std::all_of(passes.begin(), passes.end(), [&](int p) { return p == passes[0]; });
   if (ring) {
-    if (passes[0] == 0) return;
-    for (int j = 0; j < passes[0]; ++j) {
-      Path path;
-      path.role = PathRole::Fill;
-      double a = 0, b = 0;
-      depth(0, j, passes[0], a, b);
-      path.start = point_at(0, (a + b) / 2);
-      for (int k = 0; k < m; ++k) {
-        double a1 = 0, b1 = 0;
-        depth(k + 1, j, passes[0], a1, b1);
-        add_strip({s_of(k), a, b, s_of(k + 1), a1, b1}, rate, path, out.stats);
-        a = a1;
-        b = b1;
-      }
-      if (!path.pieces.empty()) path.pieces.back().to = path.start;
-      out.paths.push_back(std::move(path));
-    }
+    plan_fill_rings(grid, passes[0], rate, out);
     return;
   }
-
   int start = 0;
   if (cyclic)
     while (passes[static_cast<std::size_t>((start + m - 1) % m)] == passes[static_cast<std::size_t>(start)]) ++start;
@@ -466,44 +506,69 @@ void LithophanePlanner::plan_fill(const std::vector<double>& s, const std::vecto
     const int count = passes[static_cast<std::size_t>(k % m)];
     int end = k;
     while (end < start + m && passes[static_cast<std::size_t>(end % m)] == count) ++end;
-    if (count > 0) {
-      // Vertices k..end. Start at the corner nearest the head, then serpentine.
-      double best = 0;
-      bool from_low = true, forward = true;
-      for (bool low : {true, false})
-        for (bool fwd : {true, false}) {
-          double a = 0, b = 0;
-          depth(fwd ? k : end, low ? 0 : count - 1, count, a, b);
-          const double d = distance(cur, point_at(s_of(fwd ? k : end), (a + b) / 2));
-          if ((low && fwd) || d < best) {
-            best = d;
-            from_low = low;
-            forward = fwd;
-          }
-        }
-      for (int p = 0; p < count; ++p) {
-        const int j = from_low ? p : count - 1 - p;
-        const bool fwd = forward == (p % 2 == 0);
-        Path path;
-        path.role = PathRole::Fill;
-        int i = fwd ? k : end;
-        const int step = fwd ? 1 : -1;
-        double a = 0, b = 0;
-        depth(i, j, count, a, b);
-        path.start = point_at(s_of(i), (a + b) / 2);
-        for (; fwd ? i < end : i > k; i += step) {
-          double a1 = 0, b1 = 0;
-          depth(i + step, j, count, a1, b1);
-          add_strip({s_of(i), a, b, s_of(i + step), a1, b1}, rate, path, out.stats);
-          a = a1;
-          b = b1;
-        }
-        cur = end_of(path);
-        out.paths.push_back(std::move(path));
-      }
-    }
+    if (count > 0) cur = plan_fill_group(grid, k, end, count, cur, rate, out);
     k = end;
   }
+}
+
+// A cylinder with the same count of passes all round: each pass a closed ring from s = 0.
+void LithophanePlanner::plan_fill_rings(const FillGrid& grid, int count, double rate, LithoLayer& out) const {
+  for (int j = 0; j < count; ++j) {
+    Path path;
+    path.role = PathRole::Fill;
+    double a = 0, b = 0;
+    grid.depth(0, j, count, a, b);
+    path.start = point_at(0, (a + b) / 2);
+    for (int k = 0; k < grid.m; ++k) {
+      double a1 = 0, b1 = 0;
+      grid.depth(k + 1, j, count, a1, b1);
+      add_strip({grid.s_of(k), a, b, grid.s_of(k + 1), a1, b1}, rate, path, out.stats);
+      a = a1;
+      b = b1;
+    }
+    if (!path.pieces.empty()) path.pieces.back().to = path.start;
+    out.paths.push_back(std::move(path));
+  }
+}
+
+// The `count` runs side by side over vertices k..end: from the corner nearest
+// the head (at `cur`), then serpentine. Returns where the head ends.
+Point LithophanePlanner::plan_fill_group(const FillGrid& grid, int k, int end, int count, Point cur, double rate,
+                                         LithoLayer& out) const {
+  double best = 0;
+  bool from_low = true, forward = true;
+  for (bool low : {true, false})
+    for (bool fwd : {true, false}) {
+      double a = 0, b = 0;
+      grid.depth(fwd ? k : end, low ? 0 : count - 1, count, a, b);
+      const double d = distance(cur, point_at(grid.s_of(fwd ? k : end), (a + b) / 2));
+      if ((low && fwd) || d < best) {
+        best = d;
+        from_low = low;
+        forward = fwd;
+      }
+    }
+  for (int p = 0; p < count; ++p) {
+    const int j = from_low ? p : count - 1 - p;
+    const bool fwd = forward == (p % 2 == 0);
+    Path path;
+    path.role = PathRole::Fill;
+    int i = fwd ? k : end;
+    const int step = fwd ? 1 : -1;
+    double a = 0, b = 0;
+    grid.depth(i, j, count, a, b);
+    path.start = point_at(grid.s_of(i), (a + b) / 2);
+    for (; fwd ? i < end : i > k; i += step) {
+      double a1 = 0, b1 = 0;
+      grid.depth(i + step, j, count, a1, b1);
+      add_strip({grid.s_of(i), a, b, grid.s_of(i + step), a1, b1}, rate, path, out.stats);
+      a = a1;
+      b = b1;
+    }
+    cur = end_of(path);
+    out.paths.push_back(std::move(path));
+  }
+  return cur;
 }
 
 }  // namespace gcode::litho

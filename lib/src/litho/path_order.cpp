@@ -279,6 +279,154 @@ struct Ends {
   double s[2], d[2];  // start, end
 };
 
+// The positions along the base where runs end or the head is, as the
+// vertices of PassOrder::euler's graph: distinct beyond 1e-6, a cylinder's
+// 0 and its length one position.
+class BasePositions {
+ public:
+  BasePositions(const std::vector<Ends>& ends, double head_s, bool closed, double length)
+      : closed_(closed), length_(length) {
+    std::vector<double> pos;
+    for (const Ends& e : ends) pos.insert(pos.end(), {e.s[0], e.s[1]});
+    pos.push_back(head_s);
+    std::sort(pos.begin(), pos.end());
+    for (const double p : pos)
+      if (at_.empty() || p - at_.back() > 1e-6) at_.push_back(p);
+    if (closed && at_.size() > 1 && at_.front() + length - at_.back() <= 1e-6) at_.pop_back();
+  }
+
+  std::size_t size() const { return at_.size(); }
+  bool closed() const { return closed_; }
+  std::size_t vertex(double p) const {
+    std::size_t i = static_cast<std::size_t>(std::lower_bound(at_.begin(), at_.end(), p - 1e-6) - at_.begin());
+    if (i == at_.size()) i = 0;  // past the last: the first, round the circle
+    return i;
+  }
+  // The distance along the base between two positions (a cylinder's the shorter way round).
+  double gap(std::size_t a, std::size_t b) const {
+    const double d = std::abs(at_[a] - at_[b]);
+    return closed_ ? std::min(d, length_ - d) : d;
+  }
+
+ private:
+  bool closed_;
+  double length_;
+  std::vector<double> at_;
+};
+
+// An edge of the graph: a run, or a travel (`run` past the last run).
+struct Edge {
+  std::size_t u, v;
+  std::size_t run;
+};
+
+// The odd positions paired with neighbours, one left out, for the least
+// travel: on a line by dynamic programming over them in order; on a circle
+// the same from each start.
+std::vector<std::pair<std::size_t, std::size_t>> pair_odd_positions(const std::vector<std::size_t>& odd,
+                                                                     const BasePositions& positions) {
+  const std::size_t m = odd.size();
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t rot = 0; rot < (positions.closed() ? m : 1); ++rot) {
+    auto at = [&](std::size_t k) { return odd[(k + rot) % m]; };
+    // f[k][left]: cheapest for the first k with `left` (0/1) of them left out.
+    std::vector<std::array<double, 2>> f(m + 1, {std::numeric_limits<double>::infinity(),
+                                                 std::numeric_limits<double>::infinity()});
+    std::vector<std::array<char, 2>> how(m + 1, {0, 0});  // 1: k-1 left out, 2: k-2 paired with k-1
+    f[0][0] = 0;
+    for (std::size_t k = 1; k <= m; ++k)
+      for (int left = 0; left < 2; ++left) {
+        if (left == 1 && f[k - 1][0] < f[k][1]) {
+          f[k][1] = f[k - 1][0];
+          how[k][1] = 1;
+        }
+        if (k >= 2 && f[k - 2][left] + positions.gap(at(k - 2), at(k - 1)) < f[k][left]) {
+          f[k][left] = f[k - 2][left] + positions.gap(at(k - 2), at(k - 1));
+          how[k][left] = 2;
+        }
+      }
+    if (m > 0 && f[m][1] < best) {
+      best = f[m][1];
+      pairs.clear();
+      std::size_t k = m;
+      int left = 1;
+      while (k > 0) {
+        if (how[k][left] == 1) {
+          --k;
+          left = 0;
+        } else {
+          pairs.push_back({at(k - 2), at(k - 1)});
+          k -= 2;
+        }
+      }
+    }
+  }
+  return pairs;
+}
+
+// Joins the parts of the graph the edges leave apart: the cheapest gaps
+// between neighbouring positions in use (the head's too) of different parts,
+// each a travel there and back (`travel`: the run of a travel edge).
+void join_parts(const BasePositions& positions, std::size_t head, std::size_t travel, std::vector<Edge>& edges) {
+  const std::size_t nv = positions.size();
+  std::vector<std::size_t> part(nv);
+  for (std::size_t v = 0; v < nv; ++v) part[v] = v;
+  auto find = [&](std::size_t v) {
+    while (part[v] != v) v = part[v] = part[part[v]];
+    return v;
+  };
+  std::vector<char> used(nv, 0);
+  used[head] = 1;
+  for (const Edge& e : edges) {
+    part[find(e.u)] = find(e.v);
+    used[e.u] = used[e.v] = 1;
+  }
+  std::vector<std::pair<double, std::size_t>> joins;  // gap between vertex i and the next used one
+  std::vector<std::size_t> live;
+  for (std::size_t v = 0; v < nv; ++v)
+    if (used[v]) live.push_back(v);
+  for (std::size_t k = 0; k + (positions.closed() ? 0 : 1) < live.size(); ++k)
+    joins.push_back({positions.gap(live[k], live[(k + 1) % live.size()]), k});
+  std::sort(joins.begin(), joins.end());
+  for (const auto& [d, k] : joins) {
+    const std::size_t a = live[k], b = live[(k + 1) % live.size()];
+    if (find(a) == find(b)) continue;
+    part[find(a)] = find(b);
+    edges.push_back({a, b, travel});
+    edges.push_back({a, b, travel});
+  }
+}
+
+// Hierholzer's algorithm from `head`: `walk` gets (vertex, edge taken to it;
+// edges.size() for the start), last first. False when the edges are not one
+// walk from the head.
+bool euler_walk(const std::vector<Edge>& edges, std::size_t nv, std::size_t head,
+                std::vector<std::pair<std::size_t, std::size_t>>& walk) {
+  std::vector<std::vector<std::size_t>> adj(nv);
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    adj[edges[i].u].push_back(i);
+    if (edges[i].v != edges[i].u) adj[edges[i].v].push_back(i);
+  }
+  std::vector<char> gone(edges.size(), 0);
+  std::vector<std::size_t> next(nv, 0);
+  std::vector<std::pair<std::size_t, std::size_t>> stack{{head, edges.size()}};  // vertex, edge taken to it
+  walk.clear();
+  while (!stack.empty()) {
+    const std::size_t v = stack.back().first;
+    while (next[v] < adj[v].size() && gone[adj[v][next[v]]]) ++next[v];
+    if (next[v] == adj[v].size()) {
+      walk.push_back(stack.back());
+      stack.pop_back();
+      continue;
+    }
+    const std::size_t e = adj[v][next[v]];
+    gone[e] = 1;
+    stack.push_back({edges[e].u == v ? edges[e].v : edges[e].u, e});
+  }
+  return std::count(gone.begin(), gone.end(), 0) == 0;
+}
+
 // Several orders of the passes; the one with the least travel wins: an
 // Euler path (see euler()); nearest first, starting with each of the runs
 // nearest the head (either way round); and group by group along the base
@@ -408,136 +556,29 @@ class PassOrder {
   // left out; parts the pairing leaves apart are joined by a travel there and
   // back; the walk is then an Euler path (Hierholzer's algorithm).
   bool euler(std::vector<Step>& steps) {
-    const bool closed = map_.closed();
-    const double length = map_.length();
-    std::vector<double> pos;
-    for (const Ends& e : ends_) pos.insert(pos.end(), {e.s[0], e.s[1]});
-    pos.push_back(head_s_);
-    std::sort(pos.begin(), pos.end());
-    std::vector<double> uniq;
-    for (const double p : pos)
-      if (uniq.empty() || p - uniq.back() > 1e-6) uniq.push_back(p);
-    if (closed && uniq.size() > 1 && uniq.front() + length - uniq.back() <= 1e-6) uniq.pop_back();
-    const std::size_t nv = uniq.size();
-    auto vertex = [&](double p) {
-      std::size_t i = static_cast<std::size_t>(std::lower_bound(uniq.begin(), uniq.end(), p - 1e-6) - uniq.begin());
-      if (i == nv) i = 0;  // past the last: the first, round the circle
-      return i;
-    };
-    auto gap = [&](std::size_t a, std::size_t b) {
-      const double d = std::abs(uniq[a] - uniq[b]);
-      return closed ? std::min(d, length - d) : d;
-    };
-    struct Edge {
-      std::size_t u, v;
-      std::size_t run;  // fill_.size(): a travel
-    };
+    const BasePositions at(ends_, head_s_, map_.closed(), map_.length());
+    const std::size_t nv = at.size();
+    const std::size_t travel = fill_.size();  // the run of a travel edge
     std::vector<Edge> edges;
     std::vector<int> degree(nv, 0);
     for (std::size_t i = 0; i < ends_.size(); ++i) {
-      edges.push_back({vertex(ends_[i].s[0]), vertex(ends_[i].s[1]), i});
+      edges.push_back({at.vertex(ends_[i].s[0]), at.vertex(ends_[i].s[1]), i});
       ++degree[edges.back().u];
       ++degree[edges.back().v];
     }
-    const std::size_t head = vertex(head_s_);
+    const std::size_t head = at.vertex(head_s_);
     std::vector<std::size_t> odd;
     for (std::size_t v = 0; v < nv; ++v)
       if ((degree[v] + (v == head)) % 2) odd.push_back(v);
-    // Pair neighbours, leaving one out: on a line by dynamic programming over
-    // the odd positions in order; on a circle the same from each start.
-    const std::size_t m = odd.size();
-    std::vector<std::pair<std::size_t, std::size_t>> pairs;
-    double best = std::numeric_limits<double>::infinity();
-    for (std::size_t rot = 0; rot < (closed ? m : 1); ++rot) {
-      auto at = [&](std::size_t k) { return odd[(k + rot) % m]; };
-      // f[k][left]: cheapest for the first k with `left` (0/1) of them left out.
-      std::vector<std::array<double, 2>> f(m + 1, {std::numeric_limits<double>::infinity(),
-                                                   std::numeric_limits<double>::infinity()});
-      std::vector<std::array<char, 2>> how(m + 1, {0, 0});  // 1: k-1 left out, 2: k-2 paired with k-1
-      f[0][0] = 0;
-      for (std::size_t k = 1; k <= m; ++k)
-        for (int left = 0; left < 2; ++left) {
-          if (left == 1 && f[k - 1][0] < f[k][1]) {
-            f[k][1] = f[k - 1][0];
-            how[k][1] = 1;
-          }
-          if (k >= 2 && f[k - 2][left] + gap(at(k - 2), at(k - 1)) < f[k][left]) {
-            f[k][left] = f[k - 2][left] + gap(at(k - 2), at(k - 1));
-            how[k][left] = 2;
-          }
-        }
-      if (m > 0 && f[m][1] < best) {
-        best = f[m][1];
-        pairs.clear();
-        std::size_t k = m;
-        int left = 1;
-        while (k > 0) {
-          if (how[k][left] == 1) {
-            --k;
-            left = 0;
-          } else {
-            pairs.push_back({at(k - 2), at(k - 1)});
-            k -= 2;
-          }
-        }
-      }
-    }
-    for (const auto& [a, b] : pairs) edges.push_back({a, b, fill_.size()});
-    // Join the parts: cheapest gaps between neighbouring positions of different parts, there and back.
-    std::vector<std::size_t> part(nv);
-    for (std::size_t v = 0; v < nv; ++v) part[v] = v;
-    auto find = [&](std::size_t v) {
-      while (part[v] != v) v = part[v] = part[part[v]];
-      return v;
-    };
-    std::vector<char> used(nv, 0);
-    used[head] = 1;
-    for (const Edge& e : edges) {
-      part[find(e.u)] = find(e.v);
-      used[e.u] = used[e.v] = 1;
-    }
-    std::vector<std::pair<double, std::size_t>> joins;  // gap between vertex i and the next used one
-    std::vector<std::size_t> live;
-    for (std::size_t v = 0; v < nv; ++v)
-      if (used[v]) live.push_back(v);
-    for (std::size_t k = 0; k + (closed ? 0 : 1) < live.size(); ++k)
-      joins.push_back({gap(live[k], live[(k + 1) % live.size()]), k});
-    std::sort(joins.begin(), joins.end());
-    for (const auto& [d, k] : joins) {
-      const std::size_t a = live[k], b = live[(k + 1) % live.size()];
-      if (find(a) == find(b)) continue;
-      part[find(a)] = find(b);
-      edges.push_back({a, b, fill_.size()});
-      edges.push_back({a, b, fill_.size()});
-    }
-    // Hierholzer from the head.
-    std::vector<std::vector<std::size_t>> adj(nv);
-    for (std::size_t i = 0; i < edges.size(); ++i) {
-      adj[edges[i].u].push_back(i);
-      if (edges[i].v != edges[i].u) adj[edges[i].v].push_back(i);
-    }
-    std::vector<char> gone(edges.size(), 0);
-    std::vector<std::size_t> next(nv, 0);
-    std::vector<std::pair<std::size_t, std::size_t>> stack{{head, edges.size()}};  // vertex, edge taken to it
-    std::vector<std::pair<std::size_t, std::size_t>> walk;                          // in reverse
-    while (!stack.empty()) {
-      const std::size_t v = stack.back().first;
-      while (next[v] < adj[v].size() && gone[adj[v][next[v]]]) ++next[v];
-      if (next[v] == adj[v].size()) {
-        walk.push_back(stack.back());
-        stack.pop_back();
-        continue;
-      }
-      const std::size_t e = adj[v][next[v]];
-      gone[e] = 1;
-      stack.push_back({edges[e].u == v ? edges[e].v : edges[e].u, e});
-    }
-    if (std::count(gone.begin(), gone.end(), 0) != 0) return false;  // not one walk: leave it to the others
+    for (const auto& [a, b] : pair_odd_positions(odd, at)) edges.push_back({a, b, travel});
+    join_parts(at, head, travel, edges);
+    std::vector<std::pair<std::size_t, std::size_t>> walk;
+    if (!euler_walk(edges, nv, head, walk)) return false;  // not one walk: leave it to the others
     std::size_t from = head;
     for (std::size_t k = walk.size(); k-- > 0;) {
       const auto [v, e] = walk[k];
       if (e == edges.size()) continue;
-      if (edges[e].run < fill_.size()) take({edges[e].run, vertex(ends_[edges[e].run].s[0]) != from}, steps);
+      if (edges[e].run < travel) take({edges[e].run, at.vertex(ends_[edges[e].run].s[0]) != from}, steps);
       from = v;
     }
     return steps.size() == fill_.size();

@@ -1,56 +1,12 @@
 #pragma once
-// The paths of one lithophane layer, as in Jang & Hong's adaptive extrusion
-// (background.md §3): an inner wall along the base surface, an outer wall
-// following the picture, and between them one pass along the middle of the
-// gap, as wide as the gap.
-//
-// Physics in two sentences: a bead's cross-section is A = W x H = q / v (q the
-// extruder's volume rate, v the head speed), so at a constant q the head speed
-// alone sets the width: v = q / (gap x layer height). The extruder rate is the
-// quantity kept constant because the filament between gear and nozzle makes
-// the extruder answer seconds late, while the head answers at once.
-//
-// How a layer is cut up ("column model"): at every position s along the base
-// the layer's band is [0, t(s)] deep (t from the HeightMap, sampled at the
-// middle of the layer). The inner wall takes [0, w], the outer wall
-// [t - w, t] and the passes share [w, t - w] equally; all boundaries are
-// linear between sample points, so the pieces tile the band exactly and each
-// piece's volume is its strip's area x layer height.
-// Sample points: candidates every `resolution` mm and at the picture's own
-// corners (at a fixed height the thickness is linear between pixel centres,
-// HeightMap::knots); kept are those the chord through the kept ones around
-// would miss by more than `surface_tolerance` (Douglas-Peucker), so a hard
-// edge or a one-pixel line is followed corner to corner while a straight
-// stretch of surface is one piece (at most 5 mm on a plate; round a cylinder
-// as long as the chord stays within 0.005 mm of the circle), and points
-// where the count of passes would change within a stretch.
-// A bead has one width per move, while the strip it fills widens or narrows
-// along the piece (linearly): at the piece's ends two neighbouring beads
-// then leave |change of one's depth + change of the other's| / 4 between
-// them, measured across the band. Each stretch between sample points is cut
-// into the fewest equal pieces that keep this at most `edge_gap` (pieces no
-// shorter than half of `min_piece`); where a pass appears or ends (the walls
-// stop sharing the band) the switch gets a piece of its own, short enough
-// for the thickness's slope (down to 0.001 mm), so the change on either side
-// of it is smooth. A flat plate's sample points lie on the written X's
-// 0.0001 mm grid, so even the shortest piece's extent is written exactly.
-// A piece's width at right angles to its path is area / length, so on a
-// slope a bead gets thinner and faster, and its extruder rate stays q.
-//   - q = line width x layer height x infill speed (what conventional infill
-//     at that speed extrudes), capped by max flow. Walls keep their own rate,
-//     line width x layer height x wall speed; where the band is thinner than
-//     two line widths both walls share it (thinner and faster).
-//   - Where the gap is narrower than min pass width there is no pass and the
-//     walls share the band; where it is wider than max pass width it gets the
-//     fewest equal passes that fit (the paper has one; thick parts need more).
-//   - A speed outside [min speed, max speed] is clamped: the width is kept
-//     (the band must be filled), so that piece's extruder rate changes. The
-//     pieces are counted so a tool can warn once.
-//   - The first layer runs at first_layer_factor x every rate (speed), for
-//     adhesion of a part that stands on a thin edge.
-// A flat plate's walls join into one loop (end caps across the thickness)
-// like a slicer's perimeter; a cylinder's walls and full-length passes are
-// closed rings. Memory is one layer: plan_layer fills a caller's buffer.
+// The paths of one lithophane layer (Jang & Hong's adaptive extrusion): an
+// inner wall along the base, an outer wall following the picture, and
+// between them passes as wide as the gap, all at a constant extruder rate,
+// so the head speed alone sets each bead's width (v = q / (width x layer
+// height)). The band is cut into columns sampled at the picture's corners
+// and every resolution step, and the pieces tile it exactly. The design, the
+// cutting rules and the rates: docs/lithophanes.md. Memory is one layer:
+// plan_layer fills a caller's buffer.
 #include <cstdint>
 #include <vector>
 
@@ -162,7 +118,16 @@ class LithophanePlanner {
   static void push_piece(Path& path, const Piece& piece);
   bool add_strip(const Strip& strip, double rate, Path& path, LayerStats& stats) const;
   void add_cap(Point from, Point to, double rate, Path& path, LayerStats& stats) const;
+  static Strip wall_strip(double s0, const Column& c0, double s1, const Column& c1, bool outer);
+  struct SampleRun;  // the sample points of a layer as they are laid down
+  struct FillGrid;   // where the passes lie
+  void sample_candidates(double first, double span, int n, std::vector<double>& cand) const;
+  void sample_layer(double zs, std::vector<double>& s, std::vector<Column>& cols) const;
+  void plan_wall_rings(const std::vector<double>& s, const std::vector<Column>& cols, double rate, LithoLayer& out) const;
+  void plan_wall_loop(const std::vector<double>& s, const std::vector<Column>& cols, double rate, LithoLayer& out) const;
   void plan_fill(const std::vector<double>& s, const std::vector<Column>& cols, double rate, LithoLayer& out) const;
+  void plan_fill_rings(const FillGrid& grid, int count, double rate, LithoLayer& out) const;
+  Point plan_fill_group(const FillGrid& grid, int k, int end, int count, Point cur, double rate, LithoLayer& out) const;
 
   const HeightMap& map_;
   LithoOptions options_;
