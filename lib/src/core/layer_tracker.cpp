@@ -174,36 +174,38 @@ void LayerTracker::begin_layer(LayerInfo info, std::size_t boundary, const View&
   sink_.on_layer(info, tail_.empty() ? extrusion.before : tail_state_before(boundary));
 }
 
-void LayerTracker::resolve_markers(const View& extrusion) {
-  // Plain fields without initialisers: zeroing 64 CommentInfos on every
-  // extrusion was a quarter of a full pass (bench/run.sh, perf).
-  struct Group {
-    std::size_t index;
-    unsigned kinds;
-    bool has_number, has_z, has_height;
-    long number;
-    double z, height;
-  };
-  if (tail_.empty()) return;  // the common case: extrusion follows extrusion
-  // Markers of different kinds in one gap are one layer (PrusaSlicer profiles
-  // write ;LAYER_CHANGE and a custom ;LAYER:n); a repeated kind is a new one.
-  Group groups[64];
+// The markers of one layer in the gap before an extrusion. Plain fields
+// without initialisers: zeroing 64 of them on every extrusion was a quarter
+// of a full pass (bench/run.sh, perf).
+struct LayerTracker::MarkerGroup {
+  std::size_t index;
+  unsigned kinds;
+  bool has_number, has_z, has_height;
+  long number;
+  double z, height;
+};
+
+// Markers of different kinds in one gap are one layer (PrusaSlicer profiles
+// write ;LAYER_CHANGE and a custom ;LAYER:n); a repeated kind is a new one.
+// Returns how many groups the held lines make (at most kMaxMarkerGroups);
+// `first_z_change`: the first held line that changed Z (npos: none).
+std::size_t LayerTracker::group_markers(MarkerGroup* groups, std::size_t& first_z_change) const {
   std::size_t count = 0;
-  std::size_t first_z_change = npos;
+  first_z_change = npos;
   const Held& items = tail_;
   for (std::size_t i = 0; i < items.size(); ++i) {
     const CommentInfo& c = items[i].marker;
     if (first_z_change == npos && items[i].move.z_changed) first_z_change = i;
     if (c.marker != MarkerKind::None) {
       if (count == 0 || (groups[count - 1].kinds & kind_bit(c.marker)) != 0) {
-        if (count == 64) {
+        if (count == kMaxMarkerGroups) {
           // Dozens of empty layers in one gap: fold the rest into the last one.
           groups[count - 1].kinds = 0;
         } else {
-          groups[count++] = Group{i, 0, false, false, false, 0, 0, 0};
+          groups[count++] = MarkerGroup{i, 0, false, false, false, 0, 0, 0};
         }
       }
-      Group& g = groups[count - 1];
+      MarkerGroup& g = groups[count - 1];
       g.kinds |= kind_bit(c.marker);
       if (c.has_number && !g.has_number) {
         g.has_number = true;
@@ -219,6 +221,46 @@ void LayerTracker::resolve_markers(const View& extrusion) {
       groups[count - 1].height = c.height;
     }
   }
+  return count;
+}
+
+// The layer a group of markers starts (`last`: the group just before the
+// extrusion). `continues`: it is the layer already begun (see below).
+LayerInfo LayerTracker::marker_layer(const MarkerGroup& group, bool last, const View& extrusion,
+                                     bool& continues) const {
+  LayerInfo info;
+  info.has_slicer_number = group.has_number;
+  info.slicer_number = group.number;
+  info.z = group.has_z ? group.z
+           : last      ? extrusion.move.start[kZ]
+                       : tail_[group.index].after.position[kZ];
+  double previous_z = layers_ > 0 ? layer_z_ : 0;
+  info.height = group.has_height ? group.height : info.z - previous_z;
+  // Slic3r's verbose layer moves: a support and an object "layer" at the
+  // same printed Z are one layer; in a spiral vase the move sits at the
+  // previous layer's Z and the turn climbs one layer height from there.
+  continues = false;
+  if (group.kinds == kind_bit(MarkerKind::LayerMove) && layers_ > 0) {
+    const Move& m = extrusion.move;
+    bool climbs = last && m.end[kZ] > m.start[kZ] + kSameZ;
+    double h = layer_height_ > kSameZ ? layer_height_ : info.z - previous_z;
+    if (climbs && h > kSameZ) {
+      info.z += h;
+      info.height = h;
+    } else if (std::fabs(info.z - previous_z) <= kSameZ) {
+      continues = true;
+    }
+  }
+  info.empty = !last;
+  return info;
+}
+
+void LayerTracker::resolve_markers(const View& extrusion) {
+  if (tail_.empty()) return;  // the common case: extrusion follows extrusion
+  MarkerGroup groups[kMaxMarkerGroups];
+  std::size_t first_z_change = npos;
+  const std::size_t count = group_markers(groups, first_z_change);
+  const Held& items = tail_;
   if (count == 0) {
     emit_tail(0, items.size());
     return;
@@ -230,30 +272,8 @@ void LayerTracker::resolve_markers(const View& extrusion) {
     bool last = g + 1 == count;
     std::size_t from = g == 0 ? first : groups[g].index;
     std::size_t to = last ? items.size() : groups[g + 1].index;
-    LayerInfo info;
-    info.has_slicer_number = groups[g].has_number;
-    info.slicer_number = groups[g].number;
-    info.z = groups[g].has_z ? groups[g].z
-             : last          ? extrusion.move.start[kZ]
-                             : items[groups[g].index].after.position[kZ];
-    double previous_z = layers_ > 0 ? layer_z_ : 0;
-    info.height = groups[g].has_height ? groups[g].height : info.z - previous_z;
-    // Slic3r's verbose layer moves: a support and an object "layer" at the
-    // same printed Z are one layer; in a spiral vase the move sits at the
-    // previous layer's Z and the turn climbs one layer height from there.
     bool continues = false;
-    if (groups[g].kinds == kind_bit(MarkerKind::LayerMove) && layers_ > 0) {
-      const Move& m = extrusion.move;
-      bool climbs = last && m.end[kZ] > m.start[kZ] + kSameZ;
-      double h = layer_height_ > kSameZ ? layer_height_ : info.z - previous_z;
-      if (climbs && h > kSameZ) {
-        info.z += h;
-        info.height = h;
-      } else if (std::fabs(info.z - previous_z) <= kSameZ) {
-        continues = true;
-      }
-    }
-    info.empty = !last;
+    LayerInfo info = marker_layer(groups[g], last, extrusion, continues);
     info.first_line = from < items.size() ? items[from].number : extrusion.raw.number;
     info.offset = from < items.size() ? items[from].offset : extrusion.raw.offset;
     if (continues) {

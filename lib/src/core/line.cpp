@@ -215,6 +215,146 @@ const char* Line::find_code_end(const char* p, const char* end) {
   return code_end;
 }
 
+// "N123" at p: the line number; then p is past it and its blanks. True when
+// the line ends there (nothing, a comment or a checksum follows).
+bool Line::parse_line_number(const char*& p, const char* end) {
+  const char* q = p + 1;
+  long long n = 0;
+  while (q != end && is_digit(*q)) {
+    if (n < (1LL << 58)) n = n * 10 + (*q - '0');
+    ++q;
+  }
+  has_line_number = true;
+  line_number = n;
+  p = q;
+  while (p != end && is_space(*p)) ++p;
+  if (p == end) return true;
+  if (*p == ';' || (*p == '*' && read_checksum(p, end, *this))) {
+    find_code_end(p, end);
+    return true;
+  }
+  return false;
+}
+
+// Host command ("@pause", "@TOOLCHANGE 1") or macro of two or more letters
+// ("PAUSE", "PRINT_START EXTRUDER=210"): a name and free text.
+void Line::parse_free_text(const char* p, const char* end) {
+  const char* const command_start = p;
+  const char* code_end = find_code_end(p, end);
+  kind = *p == '@' ? CommandKind::Host : CommandKind::Extended;
+  while (p != code_end && !is_space(*p)) ++p;
+  command = std::string_view(command_start, static_cast<std::size_t>(p - command_start));
+  argument = trim(std::string_view(p, static_cast<std::size_t>(code_end - p)));
+}
+
+// A standard command's letter and number ("G1", "M104", "T0", "G29.1") at p;
+// then p is past them. False for a letter without a number ("G" alone,
+// "Gx"): a malformed line, complete.
+bool Line::parse_command(const char*& p, const char* end) {
+  const char* const command_start = p;
+  kind = CommandKind::Standard;
+  letter = upper(*p);
+  ++p;
+  while (p != end && is_space(*p)) ++p;
+  if (p == end || !is_digit(*p)) {
+    const char* code_end = find_code_end(command_start, end);
+    if (p > code_end) p = code_end;
+    malformed = true;
+    command = std::string_view(command_start, static_cast<std::size_t>(p - command_start));
+    return false;
+  }
+  int n = 0;
+  while (p != end && is_digit(*p)) {
+    if (n < 100000) n = n * 10 + (*p - '0');
+    ++p;
+  }
+  number = n;
+  if (p + 1 < end && *p == '.' && is_digit(p[1])) {
+    ++p;
+    int sub = 0;
+    while (p != end && is_digit(*p)) {
+      if (sub < 100000) sub = sub * 10 + (*p - '0');
+      ++p;
+    }
+    subcode = sub;
+  }
+  command = std::string_view(command_start, static_cast<std::size_t>(p - command_start));
+  return true;
+}
+
+// One word at p (its letter, then a number or nothing: a flag); returns where
+// the scan goes on. Past kMaxWords words the rest go to `spare` and the line
+// is malformed.
+const char* Line::parse_word(const char* p, const char* end, Word& spare) {
+  Word* w = count_ < kMaxWords ? ::new (&words_.at[count_++]) Word() : &spare;
+  if (w == &spare) malformed = true;
+  w->letter = upper(*p);
+  ++p;
+  const char* value_start = p;
+  while (value_start != end && (*value_start == ' ' || *value_start == '\t')) ++value_start;
+  if (value_start != end && starts_number(*value_start)) {
+    w->has_value = scan_number(value_start, end, *w);
+    malformed = malformed || !w->has_value;  // "X-", "X1e309", "X1.2.3"
+    return value_start + w->raw.size();
+  }
+  w->raw = std::string_view(p, 0);  // a flag: empty, placed right after its letter
+  if (p != end && is_alpha(*p)) malformed = true;  // "Xnan": a letter glued to letters is no flag word
+  return p;
+}
+
+// A RepRap-style inline comment "(...)" at p: skipped; the first one is kept
+// as the comment (a ';' inside it still starts the line's comment). Returns
+// where the scan goes on.
+const char* Line::skip_paren_comment(const char* p, const char* end) {
+  const char* close = p;
+  while (close != end && *close != ')' && *close != ';' && !(*close == '*' && checksum_at(close, end) >= 0)) ++close;
+  if (close != end && *close == ')') ++close;
+  if (comment.empty()) {
+    comment = std::string_view(p, static_cast<std::size_t>(close - p));
+    comment_pos = static_cast<std::size_t>(p - text.data());
+  }
+  return close;
+}
+
+// The words after the command, up to a ';' comment or a checksum.
+void Line::parse_words(const char* p, const char* end) {
+  Word spare;
+  while (p != end) {
+    const char c = *p;
+    if (c == ' ') {
+      ++p;
+      continue;
+    }
+    if (c == ';') {
+      comment = std::string_view(p, static_cast<std::size_t>(end - p));
+      comment_pos = static_cast<std::size_t>(p - text.data());
+      return;
+    }
+    if (is_alpha(c)) {
+      p = parse_word(p, end, spare);
+      continue;
+    }
+    if (is_space(c)) {
+      ++p;
+      continue;
+    }
+    if (c == '(') {
+      p = skip_paren_comment(p, end);
+      continue;
+    }
+    if (c == '*' && read_checksum(p, end, *this)) {
+      if (const void* semi = std::memchr(p, ';', static_cast<std::size_t>(end - p)); semi != nullptr) {
+        const char* at = static_cast<const char*>(semi);
+        comment = std::string_view(at, static_cast<std::size_t>(end - at));
+        comment_pos = static_cast<std::size_t>(at - text.data());
+      }
+      return;
+    }
+    malformed = true;
+    ++p;
+  }
+}
+
 // One forward pass for what slicers write ("G1 X10.5 Y3 E0.12 ; c"): the
 // comment, a checksum and the words are found as the scan reaches them.
 Line Line::parse(std::string_view text) {
@@ -229,35 +369,10 @@ Line Line::parse(std::string_view text) {
     line.comment_pos = static_cast<std::size_t>(p - text.data());
     return line;
   }
-
   // Optional line number ("N123 G1 ...").
-  if ((*p == 'N' || *p == 'n') && p + 1 != end && is_digit(p[1])) {
-    const char* q = p + 1;
-    long long n = 0;
-    while (q != end && is_digit(*q)) {
-      if (n < (1LL << 58)) n = n * 10 + (*q - '0');
-      ++q;
-    }
-    line.has_line_number = true;
-    line.line_number = n;
-    p = q;
-    while (p != end && is_space(*p)) ++p;
-    if (p == end) return line;
-    if (*p == ';' || (*p == '*' && read_checksum(p, end, line))) {
-      line.find_code_end(p, end);
-      return line;
-    }
-  }
-
-  const char* command_start = p;
+  if ((*p == 'N' || *p == 'n') && p + 1 != end && is_digit(p[1]) && line.parse_line_number(p, end)) return line;
   if (*p == '@' || (is_alpha(*p) && p + 1 != end && (is_alpha(p[1]) || p[1] == '_'))) {
-    // Host command ("@pause", "@TOOLCHANGE 1") or macro of two or more
-    // letters ("PAUSE", "PRINT_START EXTRUDER=210"): a name and free text.
-    const char* code_end = line.find_code_end(p, end);
-    line.kind = *p == '@' ? CommandKind::Host : CommandKind::Extended;
-    while (p != code_end && !is_space(*p)) ++p;
-    line.command = std::string_view(command_start, static_cast<std::size_t>(p - command_start));
-    line.argument = trim(std::string_view(p, static_cast<std::size_t>(code_end - p)));
+    line.parse_free_text(p, end);
     return line;
   }
   if (!is_alpha(*p)) {
@@ -265,99 +380,13 @@ Line Line::parse(std::string_view text) {
     line.malformed = p != code_end;
     return line;
   }
-
-  // Standard command: a letter and a number ("G1", "M104", "T0", "G29.1").
-  line.kind = CommandKind::Standard;
-  line.letter = upper(*p);
-  ++p;
-  while (p != end && is_space(*p)) ++p;
-  if (p == end || !is_digit(*p)) {
-    const char* code_end = line.find_code_end(command_start, end);
-    if (p > code_end) p = code_end;
-    line.malformed = true;  // "G" alone, "Gx"
-    line.command = std::string_view(command_start, static_cast<std::size_t>(p - command_start));
-    return line;
-  }
-  int n = 0;
-  while (p != end && is_digit(*p)) {
-    if (n < 100000) n = n * 10 + (*p - '0');
-    ++p;
-  }
-  line.number = n;
-  if (p + 1 < end && *p == '.' && is_digit(p[1])) {
-    ++p;
-    int sub = 0;
-    while (p != end && is_digit(*p)) {
-      if (sub < 100000) sub = sub * 10 + (*p - '0');
-      ++p;
-    }
-    line.subcode = sub;
-  }
-  line.command = std::string_view(command_start, static_cast<std::size_t>(p - command_start));
+  if (!line.parse_command(p, end)) return line;
   if (takes_string_argument(line.letter, line.number)) {
     const char* code_end = line.find_code_end(p, end);
     line.argument = trim(std::string_view(p, static_cast<std::size_t>(code_end - p)));
     return line;
   }
-
-  // Words.
-  Word spare;
-  while (p != end) {
-    const char c = *p;
-    if (c == ' ') {
-      ++p;
-      continue;
-    }
-    if (c == ';') {
-      line.comment = std::string_view(p, static_cast<std::size_t>(end - p));
-      line.comment_pos = static_cast<std::size_t>(p - text.data());
-      break;
-    }
-    if (is_alpha(c)) {
-      Word* w = line.count_ < kMaxWords ? ::new (&line.words_.at[line.count_++]) Word() : &spare;
-      if (w == &spare) line.malformed = true;
-      w->letter = upper(c);
-      ++p;
-      const char* value_start = p;
-      while (value_start != end && (*value_start == ' ' || *value_start == '\t')) ++value_start;
-      if (value_start != end && starts_number(*value_start)) {
-        w->has_value = scan_number(value_start, end, *w);
-        line.malformed = line.malformed || !w->has_value;  // "X-", "X1e309", "X1.2.3"
-        p = value_start + w->raw.size();
-      } else {
-        w->raw = std::string_view(p, 0);  // a flag: empty, placed right after its letter
-        if (p != end && is_alpha(*p)) line.malformed = true;  // "Xnan": a letter glued to letters is no flag word
-      }
-      continue;
-    }
-    if (is_space(c)) {
-      ++p;
-      continue;
-    }
-    if (c == '(') {
-      // RepRap-style inline comment: skipped; the first one is kept as the
-      // comment (a ';' inside it still starts the line's comment).
-      const char* close = p;
-      while (close != end && *close != ')' && *close != ';' && !(*close == '*' && checksum_at(close, end) >= 0)) ++close;
-      if (close != end && *close == ')') ++close;
-      if (line.comment.empty()) {
-        line.comment = std::string_view(p, static_cast<std::size_t>(close - p));
-        line.comment_pos = static_cast<std::size_t>(p - text.data());
-      }
-      p = close;
-      continue;
-    }
-    if (c == '*' && read_checksum(p, end, line)) {
-      if (const void* semi = std::memchr(p, ';', static_cast<std::size_t>(end - p)); semi != nullptr) {
-        const char* at = static_cast<const char*>(semi);
-        line.comment = std::string_view(at, static_cast<std::size_t>(end - at));
-        line.comment_pos = static_cast<std::size_t>(at - text.data());
-      }
-      break;
-    }
-    line.malformed = true;
-    ++p;
-  }
+  line.parse_words(p, end);
   return line;
 }
 

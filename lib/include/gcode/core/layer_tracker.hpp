@@ -170,6 +170,10 @@ class LayerTracker {
   void resolve_undecided(LayerMode mode);
   void resolve_tail_for_extrusion(const View& extrusion);
   void resolve_markers(const View& extrusion);
+  struct MarkerGroup;  // the markers of one layer in a gap (layer_tracker.cpp)
+  static constexpr std::size_t kMaxMarkerGroups = 64;
+  std::size_t group_markers(MarkerGroup* groups, std::size_t& first_z_change) const;
+  LayerInfo marker_layer(const MarkerGroup& group, bool last, const View& extrusion, bool& continues) const;
   void resolve_heuristic(const View& extrusion);
   void emit_tail(std::size_t from, std::size_t to);
   void emit(const View& v);

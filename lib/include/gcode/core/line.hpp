@@ -112,6 +112,13 @@ class Line {
 
  private:
   const char* find_code_end(const char* p, const char* end);
+  // The steps of parse(), in the order a line is read (line.cpp).
+  bool parse_line_number(const char*& p, const char* end);
+  void parse_free_text(const char* p, const char* end);
+  bool parse_command(const char*& p, const char* end);
+  void parse_words(const char* p, const char* end);
+  const char* parse_word(const char* p, const char* end, Word& spare);
+  const char* skip_paren_comment(const char* p, const char* end);
 
   // Left uninitialised: only the first count_ words are ever read, and
   // clearing all of them for every line was a quarter of Line::parse.
