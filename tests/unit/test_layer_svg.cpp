@@ -78,3 +78,29 @@ TEST_CASE("feature colours and layer patterns", "[layer_svg]") {
   CHECK(gcode::expand_layer_pattern("plain.svg", 3) == "plain.svg");
   CHECK(!gcode::has_layer_placeholder("plain.svg"));
 }
+
+TEST_CASE("layer pictures: one a layer by the pattern, or one sheet, each with its layer's time", "[layer_svg]") {
+  gcode::LayerDrawer drawer([](int l) { return l <= 2; });
+  gctest::run_stages(kTwoLayers, {&drawer});
+  std::vector<gcode::LayerDrawing>& drawings = drawer.drawings();
+  REQUIRE(drawings.size() == 2);
+  std::vector<std::pair<std::string, std::string>> written;
+  auto keep = [&](const std::string& path, const std::string& svg) { written.emplace_back(path, svg); };
+  const gcode::SvgOptions svg;
+  gcode::write_layer_pictures(drawings, svg, {12.5}, false, "layer-{}.svg", keep);
+  REQUIRE(written.size() == 2);
+  CHECK(written[0].first == "layer-1.svg");
+  CHECK(written[1].first == "layer-2.svg");
+  CHECK(drawings[0].seconds == 12.5);
+  CHECK(drawings[1].seconds == -1);  // no time known for layer 2
+  CHECK(written[1].second == gcode::layer_svg(drawings[1], svg));
+  written.clear();
+  gcode::write_layer_pictures(drawings, svg, {}, true, "sheet.svg", keep);
+  REQUIRE(written.size() == 1);
+  CHECK(written[0].first == "sheet.svg");
+  CHECK(written[0].second == gcode::layer_sheet_svg(drawings, svg));
+  CHECK_THROWS_WITH(gcode::write_layer_pictures(drawings, svg, {}, false, "one.svg", keep),
+                    "several layers selected: give --svg-out a pattern such as layer-{}.svg");
+  std::vector<gcode::LayerDrawing> none;
+  CHECK_THROWS_WITH(gcode::write_layer_pictures(none, svg, {}, false, "", keep), "no layer matches the selection");
+}
