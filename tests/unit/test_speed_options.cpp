@@ -70,9 +70,9 @@ TEST_CASE("speed options: the filament, the M220 restore and the ramp's layers f
   CHECK(resolve({"--factor", "2", "--max-flow", "10"}, print("; filament_diameter = 2.85\n"), flow).empty());
   CHECK(flow.speed.filament_diameter == 2.85);
   SpeedToolOptions guessed;
-  CHECK(resolve({"--factor", "2", "--max-flow", "10"}, print(""), guessed) ==
-        "gc-test: warning: " + gctest::temp_dir() +
-            "/in.gcode names no filament diameter; --max-flow assumes 1.75 mm (give --filament-diameter)\n");
+  const std::string warned = resolve({"--factor", "2", "--max-flow", "10"}, print(""), guessed);
+  CHECK(warned.starts_with("gc-test: warning: "));
+  CHECK(warned.ends_with("/in.gcode names no filament diameter; --max-flow assumes 1.75 mm (give --filament-diameter)\n"));
   CHECK(guessed.speed.filament_diameter == 1.75);
   SpeedToolOptions marlin2;
   resolve({"--factor", "2", "--m220"}, print("; gcode_flavor = marlin2\n"), marlin2);
