@@ -215,6 +215,9 @@ const char* Line::find_code_end(const char* p, const char* end) {
   return code_end;
 }
 
+// The steps every command line takes are forced inline: parse() is the
+// hottest function of a full pass, and a call for each would cost it.
+
 // "N123" at p: the line number; then p is past it and its blanks. True when
 // the line ends there (nothing, a comment or a checksum follows).
 bool Line::parse_line_number(const char*& p, const char* end) {
@@ -250,7 +253,7 @@ void Line::parse_free_text(const char* p, const char* end) {
 // A standard command's letter and number ("G1", "M104", "T0", "G29.1") at p;
 // then p is past them. False for a letter without a number ("G" alone,
 // "Gx"): a malformed line, complete.
-bool Line::parse_command(const char*& p, const char* end) {
+[[gnu::always_inline]] inline bool Line::parse_command(const char*& p, const char* end) {
   const char* const command_start = p;
   kind = CommandKind::Standard;
   letter = upper(*p);
@@ -285,7 +288,7 @@ bool Line::parse_command(const char*& p, const char* end) {
 // One word at p (its letter, then a number or nothing: a flag); returns where
 // the scan goes on. Past kMaxWords words the rest go to `spare` and the line
 // is malformed.
-const char* Line::parse_word(const char* p, const char* end, Word& spare) {
+[[gnu::always_inline]] inline const char* Line::parse_word(const char* p, const char* end, Word& spare) {
   Word* w = count_ < kMaxWords ? ::new (&words_.at[count_++]) Word() : &spare;
   if (w == &spare) malformed = true;
   w->letter = upper(*p);
@@ -317,7 +320,7 @@ const char* Line::skip_paren_comment(const char* p, const char* end) {
 }
 
 // The words after the command, up to a ';' comment or a checksum.
-void Line::parse_words(const char* p, const char* end) {
+[[gnu::always_inline]] inline void Line::parse_words(const char* p, const char* end) {
   Word spare;
   while (p != end) {
     const char c = *p;
