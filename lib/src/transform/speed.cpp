@@ -7,6 +7,7 @@
 
 #include "gcode/core/diagnostics.hpp"
 #include "gcode/core/feature.hpp"
+#include "gcode/core/firmware.hpp"
 #include "gcode/core/line_edit.hpp"
 #include "gcode/core/number.hpp"
 
@@ -64,7 +65,8 @@ std::string number(double v, int decimals) {
 }  // namespace
 
 M220Restore m220_restore_for_flavor(std::string_view flavor) {
-  return same_name(flavor, "marlin2") ? M220Restore::Backup : M220Restore::Reset;
+  const FirmwareFlavor* firmware = find_firmware(flavor);
+  return firmware != nullptr && firmware->m220_backup_restore ? M220Restore::Backup : M220Restore::Reset;
 }
 
 void SpeedOptions::validate() const {
