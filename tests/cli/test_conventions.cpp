@@ -46,10 +46,10 @@ const std::map<std::string, FilterCase>& filters() {
   return cases;
 }
 
-// Tools that do not write G-code (a sender and a printer model): they keep
-// the conventions of options, messages and versions only.
+// Tools that do not filter G-code (a sender, a printer model, a writer of
+// new programs): they keep the conventions of options, messages and versions only.
 const std::vector<std::string>& others() {
-  static const std::vector<std::string> names = {"gc-send", "gc-virtual-printer"};
+  static const std::vector<std::string> names = {"gc-send", "gc-virtual-printer", "gc-shape"};
   return names;
 }
 

@@ -7,6 +7,7 @@
 
 #include "gcode/core/line_builder.hpp"
 #include "gcode/core/number.hpp"
+#include "gcode/core/start_end_code.hpp"
 #include "gcode/litho/path_order.hpp"
 #include "gcode/version.hpp"
 
@@ -182,11 +183,6 @@ class Emitter {
   PathRole role_ = PathRole::Fill;
 };
 
-std::string ensure_newline(std::string text) {
-  if (!text.empty() && text.back() != '\n') text.push_back('\n');
-  return text;
-}
-
 }  // namespace
 
 void LithoGcodeOptions::validate() const {
@@ -306,44 +302,31 @@ void write_header(Emitter& e, const LithophanePlanner& planner, const LithoGcode
 void write_start(Emitter& e, const LithophanePlanner& planner, const LithoGcodeOptions& options,
                  const BedBounds& bounds) {
   if (!options.start_code.empty()) {
-    e.text() += ensure_newline(options.start_code);
+    e.text() += with_final_newline(options.start_code);
     e.set_position({bounds.min_x, bounds.min_y - 5}, 5);  // unknown: make the first layer travel explicitly
     e.line("G90");
     e.line("M83 ; relative extrusion: each E below is one piece's filament");
     return;
   }
   const LithoOptions& o = planner.options();
-  const double purge_y = bounds.min_y - 5;
-  const double purge_x0 = bounds.min_x;
-  const double purge_x1 = std::max(bounds.max_x, bounds.min_x + 20);
-  const double purge_volume = o.line_width * o.layer_height * (purge_x1 - purge_x0) * 1.2;
-  e.line(fmt::format("M140 S{} ; bed", num(options.bed_temp, 0)));
-  e.line(fmt::format("M104 S{} ; nozzle", num(options.nozzle_temp, 0)));
-  e.line(fmt::format("M190 S{}", num(options.bed_temp, 0)));
-  e.line(fmt::format("M109 S{}", num(options.nozzle_temp, 0)));
-  e.line("G28 ; home all axes");
-  e.line("G90");
-  e.line("M83 ; relative extrusion");
-  e.line("M107");
-  e.line(fmt::format("G0 F{} Z2", num(options.travel_speed * 60, 0)));
-  e.line(fmt::format("G0 X{} Y{}", num(purge_x0), num(purge_y)));
-  e.line(fmt::format("G0 Z{}", num(planner.layer_z(0))));
-  e.line(fmt::format("G1 F1200 X{} E{} ; purge line", num(purge_x1), num(purge_volume / planner.filament_area(), kE)));
-  e.set_position({purge_x1, purge_y}, planner.layer_z(0));
+  MarlinStart start{.nozzle_temp = options.nozzle_temp, .bed_temp = options.bed_temp,
+                    .travel_speed = options.travel_speed, .purge_x0 = bounds.min_x,
+                    .purge_x1 = std::max(bounds.max_x, bounds.min_x + 20), .purge_y = bounds.min_y - 5,
+                    .purge_z = planner.layer_z(0), .e_decimals = kE};
+  start.purge_filament =
+      o.line_width * o.layer_height * (start.purge_x1 - start.purge_x0) * 1.2 / planner.filament_area();
+  e.text() += marlin_start_code(start);
+  e.set_position({start.purge_x1, start.purge_y}, planner.layer_z(0));
 }
 
 // The built-in end (retract, lift, heaters and fan off, motors off) or the user's.
 void write_end(Emitter& e, const LithophanePlanner& planner, const LithoGcodeOptions& options) {
   if (!options.end_code.empty()) {
-    e.text() += ensure_newline(options.end_code);
+    e.text() += with_final_newline(options.end_code);
     return;
   }
   e.retract(true);
-  e.line(fmt::format("G0 F600 Z{} ; lift", num(std::max(e.z() + 10, planner.layer_z(planner.layer_count() - 1) + 10))));
-  e.line("M104 S0");
-  e.line("M140 S0");
-  e.line("M107");
-  e.line("M84 ; motors off");
+  e.text() += marlin_end_code(std::max(e.z() + 10, planner.layer_z(planner.layer_count() - 1) + 10));
 }
 
 }  // namespace
