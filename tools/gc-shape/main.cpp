@@ -7,7 +7,7 @@
 #include <iterator>
 #include <optional>
 
-#include "gcode/cli/io.hpp"
+#include "gcode/core/file_io.hpp"
 #include "gcode/cli/tool.hpp"
 #include "gcode/core/number.hpp"
 #include "gcode/core/output_buffer.hpp"
