@@ -8,6 +8,7 @@ packages=(
   libcli11-dev libfmt-dev libre2-dev # the library and tools
   libstb-dev                         # gc-litho: picture decoding (stb_image)
   libxxhash-dev                      # gc-send's journal: input hash and record checks
+  libmuparser-dev                    # gc-deform: the formulas (muparser)
   catch2 nlohmann-json3-dev          # unit and tool tests (JSON reports read back)
   clang libclang-rt-14-dev           # libFuzzer targets (the runtime is only recommended)
   librsvg2-bin libxml2-utils         # tests: render and validate SVG

@@ -42,6 +42,7 @@ const std::map<std::string, FilterCase>& filters() {
       {"gc-relayer", {"--at-z 5", "--at-z 500", false, true}},
       // -q: the cube is no vase, and the note that says so is not what this checks.
       {"gc-litho", {"-q --height 20 --texture " + picture, "-q --height 20 --texture " + picture + " --types no-such-feature"}},
+      {"gc-deform", {"-q --xyz 'x + 0.001*y' y z", "-q --xyz x y 'z - 5'"}},
   };
   return cases;
 }
