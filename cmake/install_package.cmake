@@ -69,6 +69,9 @@ set(CPACK_DEBIAN_TOOLS_PACKAGE_SECTION utils)
 # The shared libraries the tools load (fmt, RE2, stb, the C++ runtime), as
 # dpkg-shlibdeps finds them in the binaries: never a hand-kept list.
 set(CPACK_DEBIAN_TOOLS_PACKAGE_SHLIBDEPS ON)
+# gc-deform loads libgomp through Debian's muparser (built with OpenMP); dpkg-shlibdeps
+# leaves it to libmuparser2v5's own Depends, the package lists what the tools load.
+set(CPACK_DEBIAN_TOOLS_PACKAGE_DEPENDS "libgomp1")
 set(CPACK_DEBIAN_TOOLS_PACKAGE_RECOMMENDS "bash-completion")
 set(CPACK_DEBIAN_TOOLS_PACKAGE_SUGGESTS "cura-engine | prusa-slicer")
 set(CPACK_DEBIAN_DEV_PACKAGE_NAME gcode-tools-dev)

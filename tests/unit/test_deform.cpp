@@ -154,7 +154,7 @@ TEST_CASE("refused with the line: below the bed, down into the print, off the be
   CHECK_NOTHROW(deform(kPart, xyz("x + (x > 15 ? 3 : 0)", "y", "z"), force));
 }
 
-TEST_CASE("--width, --speed and the caps; warnings where the section leaves 0.3-3", "[deform]") {
+TEST_CASE("the width and speed factors, the caps, and warnings where the section leaves 0.3-3", "[deform]") {
   DeformOptions o;
   o.max_speed = 30;
   const Deformed d = deform(kPart, xyz("x", "y", "z", "1 + x/20", "2"), o);
