@@ -29,7 +29,8 @@ declare -A uses=(
   [report]="core pipeline"
   [litho]="core pipeline report"
   [serial]="core pipeline transform report"
-  [cli]="core pipeline transform report litho serial"
+  [procedural]="core"
+  [cli]="core pipeline transform report litho serial procedural"
 )
 
 # Prints "LAYER PATH" for every file of the library and the front end.
