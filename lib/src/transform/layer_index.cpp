@@ -6,7 +6,6 @@
 #include <system_error>
 
 #include "gcode/pipeline/pipeline.hpp"
-#include "gcode/transform/pause_sequence.hpp"
 
 namespace gcode {
 
@@ -29,8 +28,8 @@ class LayerIndex::Recorder : public Stage {
     IndexedLayer l;
     l.info = info;
     l.before = before;
-    l.retracted = retraction_.pending();
-    l.e_mode_set = e_mode_set_;
+    l.retracted = stream_.retracted;
+    l.e_mode_set = stream_.e_mode_set;
     l.settings = static_cast<int>(index_.settings_.size()) - 1;
     index_.layers_.push_back(l);
     index_.open_ = true;
@@ -46,14 +45,9 @@ class LayerIndex::Recorder : public Stage {
   }
 
   void line(const TrackedLine& t, Emitter&) override {
-    retraction_.observe(t.move);
-    if (t.line.is_m(82) || t.line.is_m(83)) e_mode_set_ = true;
-    if (CarriedSettings::may_set(t.line)) {
-      // A new version only when a value changes: layers share the rest.
-      CarriedSettings next = index_.settings_.back();
-      if (next.observe(t.line, t.before.tool) && !(next == index_.settings_.back()))
-        index_.settings_.push_back(std::move(next));
-    }
+    // A new version of the settings only when a value changes: layers share the rest.
+    if (stream_.follow(t.line, t.move, t.before.tool) && !(stream_.settings == index_.settings_.back()))
+      index_.settings_.push_back(stream_.settings);
     if (index_.open_) {
       IndexedLayer& l = index_.layers_.back();
       l.last_line = t.raw.number;
@@ -76,8 +70,7 @@ class LayerIndex::Recorder : public Stage {
  private:
   LayerIndex& index_;
   Pipeline pipeline_;
-  RetractionTracker retraction_;
-  bool e_mode_set_ = false;
+  StreamPoint stream_;  // retraction, settings (the newest version) and E mode; not its state
   bool ended_ = false;
   std::uint64_t end_offset_ = 0;
 };

@@ -14,29 +14,6 @@ std::string mm(double v) {
 
 }  // namespace
 
-void PauseContext::observe(const TrackedLine& t) {
-  retraction_.observe(t.move);
-  if (CarriedSettings::may_set(t.line)) settings_.observe(t.line, t.before.tool);
-  if (t.line.is_m(82) || t.line.is_m(83)) e_mode_set_ = true;
-  if (!t.move.extruding) return;
-  top_z_ = std::max(top_z_, t.move.end[kZ]);
-  if (t.region == Region::Layer) {
-    printed_.add(t.move.start[kX], t.move.start[kY]);
-    printed_.add(t.move.end[kX], t.move.end[kY]);
-  }
-}
-
-StreamPoint PauseContext::stream_point(const MachineState& state) const {
-  StreamPoint p;
-  p.state = state;
-  p.retracted = retraction_.pending();
-  p.settings = settings_;
-  p.e_mode_set = e_mode_set_;
-  p.top_z = top_z_;
-  p.extent = printed_;
-  return p;
-}
-
 void ParkRules::check() const {
   if (!given && !area.has_bed)
     throw std::runtime_error(

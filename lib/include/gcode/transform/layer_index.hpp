@@ -20,7 +20,7 @@
 #include "gcode/core/layer_marker.hpp"
 #include "gcode/core/layer_tracker.hpp"
 #include "gcode/core/line_builder.hpp"
-#include "gcode/transform/seam.hpp"
+#include "gcode/transform/stream_tracker.hpp"
 
 namespace gcode {
 

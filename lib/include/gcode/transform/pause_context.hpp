@@ -18,32 +18,32 @@
 #include "gcode/core/print_area.hpp"
 #include "gcode/pipeline/stage.hpp"
 #include "gcode/transform/pause_sequence.hpp"
-#include "gcode/transform/seam.hpp"
+#include "gcode/transform/stream_tracker.hpp"
 
 namespace gcode {
 
 class PauseContext {
  public:
   // Call with every line of the stream, in order.
-  void observe(const TrackedLine& t);
+  void observe(const TrackedLine& t) { stream_.observe(t); }
 
-  double top_z() const { return top_z_; }
+  double top_z() const { return stream_.top_z; }
   // XY extent of the extrusions inside layers (empty before the first).
-  const Box2& printed() const { return printed_; }
-  double pending_retraction() const { return retraction_.pending(); }
+  const Box2& printed() const { return stream_.extent; }
+  double pending_retraction() const { return stream_.retracted; }
   // Where printing stops, for build_pause().
   PausePoint point(const MachineState& state, const Precision* precision) const {
-    return PausePoint{state, retraction_.pending(), top_z_, precision};
+    return PausePoint{state, stream_.retracted, stream_.top_z, precision};
   }
   // The printed side of a seam (seam.hpp) with the printer in `state`.
-  StreamPoint stream_point(const MachineState& state) const;
+  StreamPoint stream_point(const MachineState& state) const {
+    StreamPoint p = stream_;
+    p.state = state;
+    return p;
+  }
 
  private:
-  RetractionTracker retraction_;
-  double top_z_ = 0;
-  Box2 printed_;
-  CarriedSettings settings_;
-  bool e_mode_set_ = false;
+  StreamPoint stream_;  // its state is not kept: the caller has the printer's
 };
 
 struct ParkRules {

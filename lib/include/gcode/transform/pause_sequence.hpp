@@ -25,6 +25,7 @@
 
 #include "gcode/core/line_builder.hpp"
 #include "gcode/core/machine_state.hpp"
+#include "gcode/transform/stream_tracker.hpp"  // RetractionTracker, for PausePoint
 
 namespace gcode {
 
@@ -112,24 +113,5 @@ struct PauseBlock {
 // Builds both halves. Throws std::invalid_argument when the state cannot be
 // resumed exactly (position unknown, inch units).
 PauseBlock build_pause(const PausePoint& point, const PauseConfig& config);
-
-// Follows the file's own E retractions: how much is retracted and not yet
-// pushed back since the last extrusion. A wipe (moving while retracting)
-// counts too.
-class RetractionTracker {
- public:
-  void observe(const Move& move) {
-    if (move.extruding) {
-      pending_ = 0;
-    } else if (move.kind == MoveKind::Linear || move.kind == MoveKind::Arc) {
-      pending_ -= move.filament;
-      if (pending_ < 0) pending_ = 0;
-    }
-  }
-  double pending() const { return pending_; }
-
- private:
-  double pending_ = 0;
-};
 
 }  // namespace gcode

@@ -3,7 +3,7 @@
 // from where one stream left it to where the next block expects it, so that
 // the printer cannot tell the block came from elsewhere.
 //
-// Both sides are a StreamPoint: the machine state (modes, position, E
+// Both sides are a StreamPoint (stream_tracker.hpp): the machine state (modes, position, E
 // coordinate, F, tool), the filament the stream retracted and has not pushed
 // back, the carried settings (temperatures, fans, flow, pressure advance)
 // and, on the printed side, the highest Z printed so far. The seam:
@@ -28,23 +28,11 @@
 #include <string>
 #include <vector>
 
-#include "gcode/core/geometry.hpp"
 #include "gcode/core/line_builder.hpp"
 #include "gcode/core/machine_state.hpp"
-#include "gcode/transform/carried_settings.hpp"
+#include "gcode/transform/stream_tracker.hpp"
 
 namespace gcode {
-
-// How a stream stands at one point.
-struct StreamPoint {
-  MachineState state;
-  double retracted = 0;       // mm retracted with E moves and not pushed back (RetractionTracker)
-  CarriedSettings settings;
-  bool e_mode_set = false;    // the stream has set its E mode itself (M82/M83)
-  double top_z = 0;           // printed side: the highest Z extruded at so far
-  Box2 extent;                // printed side: XY extent of what was extruded in layers
-  double layer_z = 0;         // block side: the Z of the layer that starts here
-};
 
 struct SeamOptions {
   double lift = 1;            // mm above the highest Z printed for the travel
