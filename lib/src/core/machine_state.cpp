@@ -131,13 +131,28 @@ void apply_home(MachineState& s, const Line& line) {
   }
 }
 
-void apply_temperature(MachineState& s, const Line& line) {
-  const Word* target = line.find('S');
-  if (line.number == 109 && (target == nullptr || !target->has_value)) target = line.find('R');
-  if (target == nullptr || !target->has_value) return;
-  int tool = static_cast<int>(line.value_or('T', s.tool));
-  if (tool >= 0 && tool < static_cast<int>(s.hotend_target.size()))
-    s.hotend_target[static_cast<std::size_t>(tool)] = target->value();
+void apply_heater_fan(MachineState& s, const Line& line) {
+  HeaterFanLine h;
+  if (!read_heater_fan(line, s.tool, h)) return;
+  const double v = h.value.to_double();
+  switch (h.kind) {
+    case HeaterFanLine::Kind::Hotend:
+      if (h.index >= 0 && h.index < static_cast<int>(s.hotend_target.size()))
+        s.hotend_target[static_cast<std::size_t>(h.index)] = v;
+      break;
+    case HeaterFanLine::Kind::Bed: s.bed_target = v; break;
+    case HeaterFanLine::Kind::Fan:
+      if (h.index == 0) s.fan = v;
+      break;
+    case HeaterFanLine::Kind::Chamber: break;
+  }
+}
+
+void apply_speed_factor(MachineState& s, const Line& line) {
+  if (line.has('B')) s.speed_factor_backup = s.speed_factor;
+  const Word* f = line.find('S');
+  if (f != nullptr && f->has_value) s.speed_factor = f->value();
+  if (line.has('R')) s.speed_factor = s.speed_factor_backup;
 }
 
 void apply_m(MachineState& s, const Line& line) {
@@ -147,15 +162,13 @@ void apply_m(MachineState& s, const Line& line) {
       s.e_mode_set = true;
       s.e_follows_g90 = true;
       break;
-    case 104: case 109: apply_temperature(s, line); break;
-    case 140: case 190: {
-      const Word* t = line.find('S');
-      if (t == nullptr || !t->has_value) t = line.find('R');
-      if (t != nullptr && t->has_value) s.bed_target = t->value();
+    case 104: case 109: case 140: case 190: case 106: case 107: case 568: apply_heater_fan(s, line); break;
+    case 220: apply_speed_factor(s, line); break;
+    case 221: {
+      const Word* f = line.find('S');
+      if (f != nullptr && f->has_value && !line.has('T')) s.flow_factor = f->value();
       break;
     }
-    case 106: s.fan = line.value_or('S', 255); break;
-    case 107: s.fan = 0; break;
     default: break;
   }
 }
@@ -209,7 +222,10 @@ Move MachineState::apply(const Line& line) {
       return m;
     }
     case 10: case 11:
-      if (!is_firmware_retraction(line)) return m;
+      if (!is_firmware_retraction(line)) {
+        if (line.number == 10) apply_heater_fan(*this, line);  // RepRapFirmware: G10 P<tool> S<temperature>
+        return m;
+      }
       uses_firmware_retraction = true;
       firmware_retracted = line.number == 10;
       m.kind = line.number == 10 ? MoveKind::FirmwareRetract : MoveKind::FirmwareUnretract;
@@ -251,7 +267,71 @@ bool same_machine(const MachineState& a, const MachineState& b) {
          a.e_follows_g90 == b.e_follows_g90 && a.inches == b.inches &&
          a.firmware_retracted == b.firmware_retracted && a.uses_firmware_retraction == b.uses_firmware_retraction &&
          a.tool == b.tool && a.hotend_target == b.hotend_target && a.bed_target == b.bed_target && a.fan == b.fan &&
+         a.speed_factor == b.speed_factor && a.flow_factor == b.flow_factor &&
+         a.speed_factor_backup == b.speed_factor_backup &&
          a.lifted == b.lifted && a.lift_base_z == b.lift_base_z;
+}
+
+namespace {
+
+// The value of a word that has one, as an exact decimal.
+bool word_fixed(const Line& line, char letter, Fixed& out) {
+  const Word* w = line.find(letter);
+  if (w == nullptr || !w->has_value) return false;
+  out = w->fixed();
+  return true;
+}
+
+int word_int(const Line& line, char letter, int fallback) {
+  const Word* w = line.find(letter);
+  return (w != nullptr && w->has_value) ? static_cast<int>(w->value()) : fallback;
+}
+
+// A heater's target: S, or R ("wait while heating or cooling").
+bool target(const Line& line, Fixed& out) { return word_fixed(line, 'S', out) || word_fixed(line, 'R', out); }
+
+}  // namespace
+
+bool read_heater_fan(const Line& line, int tool, HeaterFanLine& out) {
+  using Kind = HeaterFanLine::Kind;
+  if (line.kind != CommandKind::Standard) return false;
+  if (line.letter == 'G') {  // RepRapFirmware: G10 P<tool> S<active> R<standby>
+    if (line.number != 10 || !line.has('P') || !word_fixed(line, 'S', out.value)) return false;
+    out.kind = Kind::Hotend;
+    out.index = word_int(line, 'P', tool);
+    return true;
+  }
+  if (line.letter != 'M') return false;
+  switch (line.number) {
+    case 104: case 109:
+      out.kind = Kind::Hotend;
+      out.index = word_int(line, 'T', tool);
+      return target(line, out.value);
+    case 568:
+      out.kind = Kind::Hotend;
+      out.index = word_int(line, 'P', tool);
+      return word_fixed(line, 'S', out.value);
+    case 140: case 190:
+      out.kind = Kind::Bed;
+      out.index = 0;
+      return target(line, out.value);
+    case 141: case 191:
+      out.kind = Kind::Chamber;
+      out.index = 0;
+      return target(line, out.value);
+    case 106:
+      if (!word_fixed(line, 'S', out.value)) out.value = Fixed::from_int(255);
+      out.kind = Kind::Fan;
+      out.index = word_int(line, 'P', 0);
+      return true;
+    case 107:
+      out.value = Fixed();
+      out.kind = Kind::Fan;
+      out.index = word_int(line, 'P', 0);
+      return true;
+    default:
+      return false;
+  }
 }
 
 }  // namespace gcode

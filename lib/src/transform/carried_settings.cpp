@@ -29,8 +29,15 @@ int word_int(const Line& line, char letter, int fallback) {
   return (w != nullptr && w->has_value) ? static_cast<int>(w->value()) : fallback;
 }
 
-// A heater's target: S, or R ("wait while heating or cooling").
-bool target(const Line& line, Fixed& out) { return word_value(line, 'S', out) || word_value(line, 'R', out); }
+CarriedSettings::Kind kind_of(HeaterFanLine::Kind k) {
+  switch (k) {
+    case HeaterFanLine::Kind::Bed: return CarriedSettings::Kind::Bed;
+    case HeaterFanLine::Kind::Chamber: return CarriedSettings::Kind::Chamber;
+    case HeaterFanLine::Kind::Hotend: return CarriedSettings::Kind::Hotend;
+    case HeaterFanLine::Kind::Fan: return CarriedSettings::Kind::Fan;
+  }
+  return CarriedSettings::Kind::Hotend;
+}
 
 // Klipper names the extruder in a parameter ("EXTRUDER=extruder1"); the
 // slot is the command plus that parameter, the value the whole text.
@@ -94,43 +101,17 @@ bool CarriedSettings::observe(const Line& line, int tool) {
     return true;
   }
   s.text.assign(line.code());
-  if (line.letter == 'G') {  // RepRapFirmware: G10 P<tool> S<active> R<standby>
-    if (!word_value(line, 'S', v)) return false;
-    s.kind = Kind::Hotend;
-    s.index = word_int(line, 'P', tool);
-    s.value = v;
+  // Heaters and fans are read as the machine state reads them.
+  HeaterFanLine h;
+  if (read_heater_fan(line, tool, h)) {
+    s.kind = kind_of(h.kind);
+    s.index = h.index;
+    s.value = h.value;
     set(std::move(s));
     return true;
   }
+  if (line.letter != 'M') return false;
   switch (line.number) {
-    case 104: case 109:
-      if (!target(line, v)) return false;
-      s.kind = Kind::Hotend;
-      s.index = word_int(line, 'T', tool);
-      break;
-    case 568:
-      if (!word_value(line, 'S', v)) return false;
-      s.kind = Kind::Hotend;
-      s.index = word_int(line, 'P', tool);
-      break;
-    case 140: case 190:
-      if (!target(line, v)) return false;
-      s.kind = Kind::Bed;
-      break;
-    case 141: case 191:
-      if (!target(line, v)) return false;
-      s.kind = Kind::Chamber;
-      break;
-    case 106:
-      if (!word_value(line, 'S', v)) v = Fixed::from_int(255);
-      s.kind = Kind::Fan;
-      s.index = word_int(line, 'P', 0);
-      break;
-    case 107:
-      v = Fixed();
-      s.kind = Kind::Fan;
-      s.index = word_int(line, 'P', 0);
-      break;
     case 221:
       if (!word_value(line, 'S', v)) return false;  // a bare M221 reports
       s.kind = Kind::Flow;

@@ -3,6 +3,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <string>
+#include <vector>
+
+#include "gcode/transform/transition.hpp"
 
 namespace gcode {
 
@@ -38,40 +42,37 @@ void LayerExtractor::write_bridge(const MachineState& target, bool travel, Emitt
                  ? fmt::format("; {}layer {} left out", options_.note_prefix, first_skipped_)
                  : fmt::format("; {}layers {}-{} left out", options_.note_prefix, first_skipped_, last_skipped_));
   skipped_ = false;
+  std::vector<std::string> lines;
+  Transition t(printed_, precision_, lines,
+               {.lift = options_.lift_mm, .z_feed = options_.z_feedrate, .xy_feed = options_.travel_feedrate});
   // The E coordinate, where the next layer's numbers are absolute, or become
   // so at its next G90 (Marlin's relative E that came with G91).
-  if (!target.relative_e || (target.relative_xyz && target.e_follows_g90))
-    out.insert(builder_.start("G92").fixed('E', target.at(kE)).view());
-  if (target.firmware_retracted != printed_.firmware_retracted) out.insert(target.firmware_retracted ? "G10" : "G11");
+  if (!target.relative_e || (target.relative_xyz && target.e_follows_g90)) t.e_coordinate(target.at(kE), true);
+  t.firmware_retraction(target.firmware_retracted);
   // The modes the left-out layers switched: the next layer's numbers are
   // written for them (Marlin's G90/G91 set the E mode too).
   bool printer_e = printed_.relative_e;
   if (target.relative_xyz != printed_.relative_xyz) {
-    out.insert(target.relative_xyz ? "G91" : "G90");
+    t.positioning(target.relative_xyz);
     if (target.e_follows_g90) printer_e = target.relative_xyz;
   }
-  if (target.relative_e != printer_e) out.insert(target.relative_e ? "M83" : "M82");
+  if (target.relative_e != printer_e) t.e_mode(target.relative_e, true);
   // Temperatures and the fan they set (Cura's fan comes on at layer 2; a
   // temperature tower changes every few layers); set, not waited for.
-  for (std::size_t i = 0; i < target.hotend_target.size(); ++i) {
-    if (target.hotend_target[i] == printed_.hotend_target[i]) continue;
-    builder_.start("M104");
-    if (static_cast<int>(i) != target.tool) builder_.word('T', static_cast<double>(i), 0);
-    out.insert(builder_.word('S', target.hotend_target[i], 1).view());
+  for (std::size_t i = 0; i < target.hotend_target.size(); ++i)
+    if (target.hotend_target[i] != printed_.hotend_target[i])
+      t.hotend(static_cast<int>(i), target.hotend_target[i], false, static_cast<int>(i) != target.tool);
+  if (target.bed_target != printed_.bed_target) t.bed(target.bed_target, false);
+  if (target.fan != printed_.fan) t.fan(target.fan);
+  if (travel && !target.relative_xyz && target.known[kX] && target.known[kY] && target.known[kZ]) {
+    // Above both heights: the last one printed and the one to come.
+    Fixed z = target.at(kZ);
+    t.move_z(t.safe_z(printed_.known[kZ] ? std::max(z, printed_.at(kZ)) : z));
+    t.move_xy(target.at(kX), target.at(kY));
+    t.move_z(z);
+    t.feed_rate(target.feedrate, true);
   }
-  if (target.bed_target != printed_.bed_target) out.insert(builder_.start("M140").word('S', target.bed_target, 1).view());
-  if (target.fan != printed_.fan)
-    out.insert(target.fan > 0 ? builder_.start("M106").word('S', target.fan, 1).view() : std::string_view("M107"));
-  if (!travel || target.relative_xyz || !target.known[kX] || !target.known[kY] || !target.known[kZ]) return;
-  // Above both heights: the last one printed and the one to come.
-  Fixed z = target.at(kZ);
-  Fixed top = printed_.known[kZ] ? std::max(z, printed_.at(kZ)) : z;
-  Fixed lift = (top + Fixed::from_double(options_.lift_mm)).rounded(precision_.of('Z'));
-  const int fd = precision_.of('F');
-  out.insert(builder_.start("G0").fixed('Z', lift).word('F', options_.z_feedrate, fd).view());
-  out.insert(builder_.start("G0").fixed('X', target.at(kX)).fixed('Y', target.at(kY)).word('F', options_.travel_feedrate, fd).view());
-  out.insert(builder_.start("G0").fixed('Z', z).word('F', options_.z_feedrate, fd).view());
-  if (target.feedrate > 0) out.insert(builder_.start("G1").fixed('F', Fixed::from_double(target.feedrate)).view());
+  for (const std::string& l : lines) out.insert(l);
 }
 
 void LayerExtractor::line(const TrackedLine& t, Emitter& out) {

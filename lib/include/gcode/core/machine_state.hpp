@@ -81,9 +81,14 @@ struct MachineState {
   bool uses_firmware_retraction = false;  // a bare G10 or G11 has been seen
   int tool = 0;
   double filament_total = 0;  // net mm of filament pushed since the start
-  std::array<double, 8> hotend_target{};  // M104/M109 S per tool
-  double bed_target = 0;
-  double fan = 0;             // 0..255, M106/M107
+  // Heaters, fan and factors: the one record of them. Lines that set them
+  // are read by read_heater_fan (below) here and wherever else they count.
+  std::array<double, 8> hotend_target{};  // per tool: M104/M109 S|R, M568 P S, RepRapFirmware G10 P S
+  double bed_target = 0;      // M140/M190 S|R
+  double fan = 0;             // 0..255, the part fan: M106/M107 (P0)
+  double speed_factor = 100;  // %, M220 S (B backs it up, R restores it)
+  double flow_factor = 100;   // %, M221 S
+  double speed_factor_backup = 100;
   bool lifted = false;        // Z raised by a non-extruding move, not yet back down or extruded at
   double lift_base_z = 0;     // the Z before that lift
 
@@ -99,6 +104,21 @@ struct MachineState {
     position[axis] = value.to_double();
   }
 };
+
+// What a heater or fan line sets: one reading of M104/M109/M568/G10 P S,
+// M140/M190, M141/M191 and M106/M107 for the machine state and for the
+// settings a seam carries (carried_settings.hpp).
+struct HeaterFanLine {
+  enum class Kind : std::uint8_t { Bed, Chamber, Hotend, Fan };
+  Kind kind = Kind::Hotend;
+  int index = 0;  // tool or fan
+  Fixed value;    // target or fan speed (0..255)
+};
+
+// Whether `line` sets a heater or a fan, and what; `tool` is the active
+// tool (M104 without T). A line with no value to set (a bare M104) sets
+// nothing; M106 without S is full speed.
+bool read_heater_fan(const Line& line, int tool, HeaterFanLine& out);
 
 // Whether two states describe the same machine: everything but the
 // filament counter, which counts what a stream pushed, not where it is.

@@ -5,7 +5,10 @@
 // A re-sliced file sets them in its start code (PrusaSlicer: "M104 S215",
 // "M900 K0.04", "M221 S95"; Cura: "M140 S60", "M106 S255" at layer 2), and a
 // block taken from the middle of it needs them although its start code is not
-// printed. Each kind of setting is one slot (per tool, fan or drive); a
+// printed. Heaters and fans are read as MachineState reads them
+// (read_heater_fan, which keeps their numbers); a setting here is the line
+// as written, so that a seam can write it again (RepRapFirmware's G10 P S R,
+// Klipper's commands). Each kind of setting is one slot (per tool, fan or drive); a
 // stream's slots hold the last line that set them, so a seam writes exactly
 // the lines that differ between what the printer was told and what the next
 // block expects.
@@ -23,6 +26,7 @@
 
 #include "gcode/core/fixed.hpp"
 #include "gcode/core/line.hpp"
+#include "gcode/core/machine_state.hpp"
 
 namespace gcode {
 

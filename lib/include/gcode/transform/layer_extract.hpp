@@ -40,7 +40,6 @@ class LayerExtractor : public Stage {
   Selector selected_;
   const Precision& precision_;
   ExtractOptions options_;
-  LineBuilder builder_;
   bool keep_ = true;
   bool skipped_ = false;     // layers were left out since the last written line
   int first_skipped_ = 0;

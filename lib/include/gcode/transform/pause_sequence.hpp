@@ -26,6 +26,7 @@
 #include "gcode/core/line_builder.hpp"
 #include "gcode/core/machine_state.hpp"
 #include "gcode/transform/stream_tracker.hpp"  // RetractionTracker, for PausePoint
+#include "gcode/transform/transition.hpp"
 
 namespace gcode {
 
@@ -84,9 +85,7 @@ struct PauseConfig {
   std::string after_wait;      // and just after it
 };
 
-// Firmware refuses single extrusions longer than EXTRUDE_MAXLENGTH (200 mm in
-// Marlin's defaults, "prevent lengthy extrude"); long unloads go in chunks.
-inline constexpr double kMaxExtrudeChunk = 150;
+// Long unloads go in chunks of kMaxExtrudeChunk (transition.hpp).
 
 // Where printing stops, beyond the machine state.
 struct PausePoint {
