@@ -283,8 +283,7 @@ bool word_fixed(const Line& line, char letter, Fixed& out) {
 }
 
 int word_int(const Line& line, char letter, int fallback) {
-  const Word* w = line.find(letter);
-  return (w != nullptr && w->has_value) ? static_cast<int>(w->value()) : fallback;
+  return static_cast<int>(line.value_or(letter, fallback));
 }
 
 // A heater's target: S, or R ("wait while heating or cooling").

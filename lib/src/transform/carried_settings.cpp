@@ -19,14 +19,13 @@ bool iequals(std::string_view a, std::string_view b) {
 // The value of a word that has one, as an exact decimal.
 bool word_value(const Line& line, char letter, Fixed& out) {
   const Word* w = line.find(letter);
-  if (w == nullptr || !w->has_value) return false;
-  out = w->fixed();
-  return true;
+  const bool has = w != nullptr && w->has_value;
+  if (has) out = w->fixed();
+  return has;
 }
 
 int word_int(const Line& line, char letter, int fallback) {
-  const Word* w = line.find(letter);
-  return (w != nullptr && w->has_value) ? static_cast<int>(w->value()) : fallback;
+  return static_cast<int>(line.value_or(letter, fallback));
 }
 
 CarriedSettings::Kind kind_of(HeaterFanLine::Kind k) {
