@@ -134,6 +134,9 @@ void write_machine_fields(const MachineState& s, JournalFields& f) {
   f.set("hot", hotends(s));
   f.set("bed", double_text(s.bed_target));
   f.set("fan", double_text(s.fan));
+  f.set("m220", double_text(s.speed_factor));
+  f.set("m220b", double_text(s.speed_factor_backup));
+  f.set("m221", double_text(s.flow_factor));
   f.set("lift", s.lifted ? "1" : "0");
   f.set("liftz", double_text(s.lift_base_z));
 }
@@ -167,6 +170,9 @@ bool read_machine_fields(const JournalFields& f, MachineState& s, std::string& p
   r.list("hot", out.hotend_target.data(), out.hotend_target.size());
   r.number("bed", out.bed_target);
   r.number("fan", out.fan);
+  r.number("m220", out.speed_factor);
+  r.number("m220b", out.speed_factor_backup);
+  r.number("m221", out.flow_factor);
   r.flag("lift", out.lifted);
   r.number("liftz", out.lift_base_z);
   if (!r.ok()) return false;

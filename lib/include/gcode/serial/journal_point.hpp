@@ -12,6 +12,7 @@
 //   fw               firmware retraction: "" unused, "in" used, "out" retracted
 //   tool fil         active tool; net filament pushed since the start
 //   hot bed fan      heater targets (hot: per tool, "215,0"), fan 0..255
+//   m220 m220b m221  speed factor %, its M220 B backup, flow factor % (M221 S)
 //   lift liftz       a z-hop is up (0/1), the Z it lifted from
 #include <string>
 
