@@ -14,7 +14,7 @@
 
 namespace gcode {
 
-struct Line;
+class Line;
 
 // A command by letter and number (any subcode): G28, M109.
 struct CommandCode {
