@@ -27,15 +27,14 @@ bool Filter::e_mode() {
   bool regular = read_file_ends(input_.fd(), 1 << 20, 1 << 16, ends);
   EModeGuess guess = guess_e_mode(regular ? std::string_view(ends.head) : pipeline_.read_ahead(input_.fd(), 1 << 20),
                                   regular ? std::string_view(ends.tail) : std::string_view());
-  if (guess.file_sets_mode) {
+  EModeReading reading = read_e_mode(choice, guess, input_.name());
+  if (reading.file_sets_mode) {
     e_relative_ = 2;
     return false;
   }
-  bool relative = choice == EModeChoice::Auto ? guess.guessed && guess.relative : choice == EModeChoice::Relative;
-  if (choice == EModeChoice::Auto && guess.guessed && options_.verbosity() >= 0)
-    std::fprintf(stderr, "%s: warning: %s never sets the E mode (M82/M83); reading its E values as %s: %s "
-                 "(--e-mode relative|absolute to say)\n",
-                 options_.tool.c_str(), input_.name().c_str(), relative ? "relative" : "absolute", guess.reason.c_str());
+  bool relative = reading.relative;
+  if (!reading.warning.empty() && options_.verbosity() >= 0)
+    std::fprintf(stderr, "%s: warning: %s\n", options_.tool.c_str(), reading.warning.c_str());
   e_relative_ = relative ? 1 : 0;
   pipeline_.set_e_mode(relative);
   return relative;

@@ -13,7 +13,8 @@ namespace gcode::cli {
 void add_send_options(Tool& tool, SendOptions& o) {
   CLI::App& app = tool.app();
   serial::SendJob& j = o.job;
-  app.add_option("FILE", j.file, "G-code file; - or absent: standard input");
+  // -q and -v are gc-send's own below: they also govern the progress.
+  tool.add_filter_options(o.io, kInput | kLayerMarker | kEMode);
   const char* link = "Link";
   app.add_option("-p,--port", j.port, "Serial port or pseudo-terminal path, or virtual[:key=value,...] (default: virtual)")
       ->type_name("PATH|virtual[:OPTS]")->group(link);
@@ -86,6 +87,9 @@ void resolve_send_options(Tool& tool, SendOptions& o) {
   if (!(o.timeout > 0)) throw UsageError("--timeout must be above 0");
   if (o.max_timeouts < 0) throw UsageError("--max-timeouts must be 0 or more");
   if (o.max_line < 16) throw UsageError("--max-line must be at least 16");
+  j.file = o.io.file;
+  j.layer_marker = o.io.layer_marker;
+  parse_e_mode(o.io.e_mode, j.e_mode);  // checked by the option already
   serial::SenderConfig& s = j.sender;
   s.flow = *serial::parse_flow_mode(o.flow);
   s.queue = o.queue;

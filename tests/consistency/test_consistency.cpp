@@ -105,10 +105,14 @@ TEST_CASE("every tool's --help lists the common options", "[consistency]") {
       INFO(common);
       CHECK(options.count(common) == 1);
     }
-    // A tool that reads G-code ([FILE] or standard input) says more with -v.
+    // A tool that reads G-code ([FILE] or standard input), gc-send too,
+    // says more with -v and reads its input as every other: where layers
+    // begin (--layer-marker) and the E mode of a file that never says.
     if (help.find(tool + " [OPTIONS] [FILE]") != std::string::npos) {
-      CHECK(options.count("-v") == 1);
-      CHECK(options.count("--verbose") == 1);
+      for (const char* reading : {"-v", "--verbose", "--layer-marker", "--e-mode"}) {
+        INFO(reading);
+        CHECK(options.count(reading) == 1);
+      }
     }
     CHECK(options.count("--bash-completion") == 0);  // hidden: for the build
     // A filter (it rewrites its FILE in place) takes every filter option.

@@ -123,3 +123,27 @@ TEST_CASE("e mode: parse_e_mode takes the three names only", "[e_mode]") {
   CHECK_FALSE(gcode::parse_e_mode("", c));
   CHECK(c == EModeChoice::Absolute);  // unchanged on failure
 }
+
+TEST_CASE("e mode: read_e_mode, the one decision every tool makes from --e-mode and the guess", "[e_mode]") {
+  const auto relative_file = guess_e_mode(moves(30, true), "");
+  REQUIRE(relative_file.guessed);
+  // auto: the guess, with a warning naming the input and the reason.
+  auto r = gcode::read_e_mode(EModeChoice::Auto, relative_file, "part.gcode");
+  CHECK_FALSE(r.file_sets_mode);
+  CHECK(r.relative);
+  CHECK(r.warning == "part.gcode never sets the E mode (M82/M83); reading its E values as relative: " +
+                         relative_file.reason + " (--e-mode relative|absolute to say)");
+  // Said by the user: that, without a word, whatever the guess.
+  for (EModeChoice said : {EModeChoice::Relative, EModeChoice::Absolute}) {
+    auto told = gcode::read_e_mode(said, relative_file, "part.gcode");
+    CHECK(told.relative == (said == EModeChoice::Relative));
+    CHECK(told.warning.empty());
+  }
+  // Too little to go on: absolute, silently; the file's own M83: nothing to set.
+  auto few = gcode::read_e_mode(EModeChoice::Auto, guess_e_mode(moves(5, true), ""), "part.gcode");
+  CHECK_FALSE(few.relative);
+  CHECK(few.warning.empty());
+  auto own = gcode::read_e_mode(EModeChoice::Relative, guess_e_mode("M83\n" + moves(30, false), ""), "part.gcode");
+  CHECK(own.file_sets_mode);
+  CHECK(own.warning.empty());
+}

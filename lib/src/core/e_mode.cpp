@@ -83,4 +83,17 @@ EModeGuess guess_e_mode(std::string_view head, std::string_view tail) {
   return g;
 }
 
+EModeReading read_e_mode(EModeChoice choice, const EModeGuess& guess, std::string_view name) {
+  EModeReading r;
+  if (guess.file_sets_mode) {
+    r.file_sets_mode = true;
+    return r;
+  }
+  r.relative = choice == EModeChoice::Auto ? guess.guessed && guess.relative : choice == EModeChoice::Relative;
+  if (choice == EModeChoice::Auto && guess.guessed)
+    r.warning = std::string(name) + " never sets the E mode (M82/M83); reading its E values as " +
+                (r.relative ? "relative" : "absolute") + ": " + guess.reason + " (--e-mode relative|absolute to say)";
+  return r;
+}
+
 }  // namespace gcode

@@ -138,9 +138,11 @@ int run_send_job(SendJob& job, Diagnostics& diag) {
     }
   });
   sender.set_trace(trace || log != nullptr);
-  SendSession session(loop, sender, input.fd(), port_fd, diag);
+  SendSession session(loop, sender, input.fd(), port_fd, diag,
+                      job.layer_marker.empty() ? LayerMarkers() : LayerMarkers(job.layer_marker));
   PrintControlConfig control = job.control;
   if (job.park) control.park = job.park(session.read_print_area(), control.pause);
+  int e_relative = session.read_e_mode(job.e_mode, input.name());
   session.set_control(control, job.control_path);
   ProgressOptions progress = job.progress;
   if (job.quiet) progress.mode = ProgressMode::Off;  // the status file is still kept
@@ -165,8 +167,8 @@ int run_send_job(SendJob& job, Diagnostics& diag) {
     InputFile again(job.file);
     struct stat st{};
     if (::fstat(again.fd(), &st) == 0 && S_ISREG(st.st_mode)) {
-      LayerMarkers markers;
-      Pipeline count(markers);
+      Pipeline count(session.markers());
+      if (e_relative >= 0) count.set_e_mode(e_relative == 1);
       LayerTimer timer(sender_estimator_options());
       count.add(timer);
       count.run(again.fd());

@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include "gcode/core/file_ends.hpp"
 #include "gcode/core/line.hpp"
 #include "gcode/core/line_reader.hpp"
 #include "gcode/serial/protocol.hpp"
@@ -61,12 +62,14 @@ struct SendSession::Segment : Stage {
   bool source_done = false;
 };
 
-SendSession::SendSession(EventLoop& loop, Sender& sender, int input_fd, int port_fd, Diagnostics& diagnostics)
+SendSession::SendSession(EventLoop& loop, Sender& sender, int input_fd, int port_fd, Diagnostics& diagnostics,
+                         LayerMarkers markers)
     : loop_(loop),
       sender_(sender),
       input_fd_(input_fd),
       port_fd_(port_fd),
       diag_(diagnostics),
+      markers_(std::move(markers)),
       pipeline_(markers_, PipelineOptions{.layers = true, .block_size = 16384}) {
   set_nonblocking(port_fd_);
   struct stat st{};
@@ -99,6 +102,18 @@ PrintArea SendSession::read_print_area() {
   PrintArea area;
   if (scan_file_limits(input_fd_, area)) return area;
   return scan_text_limits(pipeline_.read_header(input_fd_));
+}
+
+int SendSession::read_e_mode(EModeChoice choice, std::string_view name) {
+  FileEnds ends;
+  bool regular = read_file_ends(input_fd_, 1 << 20, 1 << 16, ends);
+  EModeGuess guess = guess_e_mode(regular ? std::string_view(ends.head) : pipeline_.read_header(input_fd_),
+                                  regular ? std::string_view(ends.tail) : std::string_view());
+  EModeReading reading = gcode::read_e_mode(choice, guess, name);
+  if (reading.file_sets_mode) return -1;
+  if (!reading.warning.empty()) diag_.warn(reading.warning);
+  pipeline_.set_e_mode(reading.relative);
+  return reading.relative ? 1 : 0;
 }
 
 void SendSession::set_control(const PrintControlConfig& config, const std::string& control_path) {

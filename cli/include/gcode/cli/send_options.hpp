@@ -1,5 +1,6 @@
 #pragma once
-// gc-send's options, in groups: the link (port, baud, flow control, the
+// gc-send's options: FILE, --layer-marker and --e-mode as every tool that
+// reads G-code takes them (tool.hpp), then in groups: the link (port, baud, flow control, the
 // firmware's buffers, timeouts, line limits), control (the FIFO, the rush
 // of a pause, in-stream pauses, cancel), progress, and the pause block's
 // options shared with gc-pause-at (pause_options.hpp).
@@ -13,6 +14,7 @@ namespace gcode::cli {
 
 struct SendOptions {
   serial::SendJob job;
+  FilterOptions io;         // FILE, --layer-marker, --e-mode: read as every tool reads G-code
   PauseOptions pause;
   std::string flow = "window";
   int queue = 4, rx_buffer = 128, max_timeouts = 5;

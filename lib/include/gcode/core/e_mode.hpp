@@ -30,4 +30,14 @@ EModeGuess guess_e_mode(std::string_view head, std::string_view tail);
 // Parses "relative", "absolute" or "auto". Returns false for anything else.
 bool parse_e_mode(std::string_view text, EModeChoice& choice);
 
+// How a tool reads a file, from --e-mode and what guess_e_mode found: every
+// tool that reads G-code decides alike (filters, gc-send).
+struct EModeReading {
+  bool file_sets_mode = false;  // the file's own M82/M83 decide: nothing to set
+  bool relative = false;        // else the E mode to start in
+  std::string warning;          // a guess the user did not confirm ("" when none)
+};
+// `name`: the input as messages call it ("part.gcode", "standard input").
+EModeReading read_e_mode(EModeChoice choice, const EModeGuess& guess, std::string_view name);
+
 }  // namespace gcode

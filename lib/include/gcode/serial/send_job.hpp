@@ -8,6 +8,7 @@
 #include <string>
 
 #include "gcode/core/diagnostics.hpp"
+#include "gcode/core/e_mode.hpp"
 #include "gcode/core/print_area.hpp"
 #include "gcode/serial/print_control.hpp"
 #include "gcode/serial/progress.hpp"
@@ -18,6 +19,8 @@ namespace gcode::serial {
 
 struct SendJob {
   std::string file;                 // "" or "-": standard input
+  std::string layer_marker;         // RE2 pattern of a layer start ("": the slicers' markers)
+  EModeChoice e_mode = EModeChoice::Auto;  // a file that never says M82/M83
   std::string port = "virtual";     // a path, or virtual[:opts] (vconfig holds them)
   int baud = 250000;
   bool reset = false;

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "gcode/core/diagnostics.hpp"
+#include "gcode/core/e_mode.hpp"
 #include "gcode/core/layer_marker.hpp"
 #include "gcode/core/print_area.hpp"
 #include "gcode/pipeline/pipeline.hpp"
@@ -37,8 +38,10 @@ namespace gcode::serial {
 
 class SendSession : private Stage {
  public:
-  // Does not own the descriptors. `port_fd` is made non-blocking.
-  SendSession(EventLoop& loop, Sender& sender, int input_fd, int port_fd, Diagnostics& diagnostics);
+  // Does not own the descriptors. `port_fd` is made non-blocking. `markers`:
+  // where the input's layers begin (the slicers' markers, or --layer-marker's).
+  SendSession(EventLoop& loop, Sender& sender, int input_fd, int port_fd, Diagnostics& diagnostics,
+              LayerMarkers markers = LayerMarkers());
   ~SendSession() override;
   SendSession(const SendSession&) = delete;
   SendSession& operator=(const SendSession&) = delete;
@@ -46,6 +49,13 @@ class SendSession : private Stage {
   // The bed and height the file states (its header, or for a regular file
   // its head and tail), before anything is sent.
   PrintArea read_print_area();
+  // The E mode of an input that never says M82/M83 (e_mode.hpp), before
+  // anything is sent: `choice`, else guessed with a warning naming `name`.
+  // A regular file is read at both ends; from a pipe only the lines before
+  // the first move, so the print is not held back to read ahead. Returns
+  // 1 relative, 0 absolute, -1 the file says itself.
+  int read_e_mode(EModeChoice choice, std::string_view name);
+  const LayerMarkers& markers() const { return markers_; }
   // Pausing, cancelling, speed: before run(). `control_path` empty: no FIFO.
   void set_control(const PrintControlConfig& config, const std::string& control_path);
   void set_progress(const ProgressOptions& options) { progress_.emplace(options); }
