@@ -9,30 +9,11 @@
 
 #include "gcode/serial/protocol.hpp"
 #include "gcode/serial/virtual_printer.hpp"
+#include "printer_talk.hpp"
 
 using namespace gcode::serial;
-
-namespace {
-
-// Runs the model to `until` and returns the lines it sent by then.
-std::vector<std::string> answers(VirtualPrinter& p, double until) {
-  p.advance(until);
-  std::string_view out = p.transmitted(until);
-  std::vector<std::string> lines;
-  std::size_t pos = 0;
-  for (std::size_t nl; (nl = out.find('\n', pos)) != std::string_view::npos; pos = nl + 1)
-    lines.emplace_back(out.substr(pos, nl - pos));
-  p.take(pos);
-  return lines;
-}
-
-std::string numbered(long long n, std::string_view cmd) {
-  std::string s;
-  append_numbered_line(s, n, cmd);
-  return s;
-}
-
-}  // namespace
+using gctest::answers;
+using gctest::numbered;
 
 TEST_CASE("virtual printer: greets, and bytes take one byte time each way", "[serial]") {
   VirtualPrinterConfig c;

@@ -44,8 +44,20 @@ int main(int argc, char** argv) {
       ->type_name("DEG_PER_S");
   app.add_option("--fault", faults,
                  "Inject a fault, repeatable: corrupt=P drop-ok=P resend=P garbage=P busy=P (P per line), "
-                 "silent-after=N halt-after=N disconnect-after=N (N commands), seed=S")
+                 "silent-after=N halt-after=N disconnect-after=N (N commands), seed=S; at a chosen moment: "
+                 "reset@WHEN (the board restarts), drop=S@WHEN (the link is gone S simulated seconds, the board "
+                 "runs on), drop-reset=S@WHEN (and restarts when it returns), WHEN being line=N (after command "
+                 "N), time=S (simulated second S) or layer=N (after the first extruding move of layer N)")
       ->type_name("KEY=VALUE");
+  std::string greeting = "start";
+  app.add_option("--greeting", greeting,
+                 "How the board greets after a reset: start, nul (a NUL before start), twice (start twice), "
+                 "external (start, echo: External Reset, the firmware line); default start")
+      ->type_name("FORM");
+  app.add_option("--drop-seconds", o.drop_seconds,
+                 "How long a link drop fired by SIGUSR2 lasts, in simulated seconds (default 5); SIGUSR1 "
+                 "resets the board")
+      ->type_name("S");
   app.add_option("--log", o.log, "Write every executed command: time, N, X, Y, Z, E, command (tab-separated)")
       ->type_name("FILE");
   app.add_flag("-q,--quiet", o.quiet, "No messages on standard error");
@@ -53,10 +65,12 @@ int main(int argc, char** argv) {
     std::string opts;
     for (const std::string& f : faults) opts += f + ",";
     parse_virtual_options(opts, c);
+    c.greeting = parse_greeting_form(greeting);
     if (no_link_report) c.report_link = false;
-    if (c.baud < 50 || c.queue < 1 || c.rx_buffer < 16 || c.max_line < 16 || c.planner < 1 || !(c.time_scale > 0))
+    if (c.baud < 50 || c.queue < 1 || c.rx_buffer < 16 || c.max_line < 16 || c.planner < 1 || !(c.time_scale > 0) ||
+        !(o.drop_seconds >= 0))
       throw gcode::cli::UsageError(
-          "--baud, --queue, --rx-buffer, --max-line, --planner and --time-scale need sensible values");
+          "--baud, --queue, --rx-buffer, --max-line, --planner, --time-scale and --drop-seconds need sensible values");
   });
   return tool.run(argc, argv, [&] { return run_virtual_printer(o, c); });
 }

@@ -12,6 +12,18 @@ class MarlinDialect final : public ReplyDialect {
  public:
   std::string greeting() const override { return "start"; }
 
+  std::vector<std::string> restart_greeting(GreetingForm form) const override {
+    switch (form) {
+      // A USB-serial chip often hands over a NUL (line noise of the reset) first.
+      case GreetingForm::NulStart: return {std::string("\0start", 6)};
+      case GreetingForm::Twice: return {"start", "start"};
+      case GreetingForm::ExternalReset:
+        return {"start", "echo: External Reset", "Marlin 2.1.2 (gc-virtual-printer)"};
+      case GreetingForm::Start: break;
+    }
+    return {"start"};
+  }
+
   std::string ok(long long number, bool advanced, int planner_free, int queue_free) const override {
     if (!advanced) return "ok";
     if (number >= 0) return fmt::format("ok N{} P{} B{}", number, planner_free, queue_free);

@@ -60,13 +60,50 @@ void VirtualLink::on_io(short revents) {
   pump();
 }
 
+void VirtualLink::reset_printer() {
+  double now = simulated_now();
+  printer_.advance(now);
+  printer_.reset(now);
+  pump();
+}
+
+void VirtualLink::drop_link(double seconds, bool reset_after) {
+  double now = simulated_now();
+  printer_.advance(now);
+  printer_.drop_link(now, seconds, reset_after);
+  pump();
+}
+
+// The model's link went down or came back: the descriptor goes or a new one
+// comes (a pty at the same path).
+void VirtualLink::follow_link_state() {
+  if (printer_.link_down() == down_) return;
+  down_ = printer_.link_down();
+  if (down_) {
+    out_.clear();
+    if (!on_drop_) return;
+    loop_.remove_fd(watch_);
+    watch_ = -1;
+    on_drop_();
+  } else if (on_restore_) {
+    fd_ = on_restore_();
+    set_nonblocking(fd_);
+    watch_ = loop_.add_fd(fd_, POLLIN, [this](short revents) { on_io(revents); });
+  }
+}
+
 void VirtualLink::pump() {
   if (closed_) return;
   double now = simulated_now();
   printer_.advance(now);
+  follow_link_state();
   std::string_view ready = printer_.transmitted(now);
   out_.append(ready);
   printer_.take(ready.size());
+  if (watch_ < 0) {
+    out_.clear();  // no link: the model's lines go nowhere
+    return;
+  }
   while (!out_.empty()) {
     // A socket whose host end is gone is EPIPE, never a SIGPIPE that would
     // end the whole process (gc-send runs the model in-process).

@@ -23,7 +23,7 @@ constexpr double kAmbient = 20.0;
 }  // namespace
 
 VirtualPrinter::VirtualPrinter(const VirtualPrinterConfig& config, std::FILE* log)
-    : config_(config), log_(log), wire_(config.baud), rng_(config.seed) {
+    : config_(config), log_(log), wire_(config.baud), schedule_(config.scheduled), rng_(config.seed) {
   send(dialect_->greeting());
 }
 
@@ -33,7 +33,7 @@ bool VirtualPrinter::chance(double p) {
 }
 
 void VirtualPrinter::send(std::string_view text) {
-  if (silent_ || halted_) return;
+  if (silent_ || halted_ || link_down_) return;
   stats_.tx_bytes += text.size() + 1;
   wire_.transmit(text, now_);
 }
@@ -64,7 +64,7 @@ double VirtualPrinter::next_event() const {
   }
   if (wait_ != Wait::None && wait_ != Wait::Heating) t = std::min(t, next_busy_);
   t = std::min(t, next_report_);
-  return t;
+  return std::min({t, link_up_at_, schedule_.next_time()});
 }
 
 void VirtualPrinter::advance(double now) {
@@ -76,7 +76,7 @@ void VirtualPrinter::advance(double now) {
       if (wait_ == Wait::Dwell || wait_ == Wait::Homing || wait_ == Wait::Stall) t_fw = std::min(t_fw, wait_until_);
       if (wait_ == Wait::Heating) t_fw = std::min(t_fw, heat_done_time());
       if (wait_ != Wait::None && wait_ != Wait::Heating) t_fw = std::min(t_fw, next_busy_);
-      t_fw = std::min(t_fw, next_report_);
+      t_fw = std::min({t_fw, next_report_, link_up_at_, schedule_.next_time()});
     }
     double t = std::min(t_wire, t_fw);
     if (t > now || t == kNever) break;
@@ -96,6 +96,8 @@ void VirtualPrinter::advance(double now) {
       send(dialect_->temperatures(temperatures(), heating));
       next_report_ = heating ? t + 1 : (autoreport_ > 0 ? t + autoreport_ : kNever);
     }
+    if (link_up_at_ <= t) link_up(t);
+    for (ScheduledFault f; schedule_.take_due(t, f);) fire(f, t);
     run(t);
   }
   update_temperatures(std::max(now, temp_time_));
@@ -268,6 +270,7 @@ void VirtualPrinter::add_block(double duration, double t) {
   empty_since_ = -1;
   planner_.push_back(duration);
   lengths_.push_back(pending_length_);
+  block_numbers_.push_back(queue_.empty() ? -1 : queue_.front().number);
   queued_length_ += pending_length_;
   ++stats_.moves;
 }
@@ -276,6 +279,7 @@ void VirtualPrinter::planner_step(double t) {
   planner_.pop_front();
   done_length_ += lengths_.front();
   lengths_.pop_front();
+  block_numbers_.pop_front();
   if (!planner_.empty()) {
     head_end_ = t + planner_.front();
   } else {
@@ -356,6 +360,10 @@ bool VirtualPrinter::process_move(const Move& m, double t) {
   double feed = m.feedrate > 0 ? m.feedrate : 1500;
   pending_duration_ = config_.instant_moves ? 0 : length / (feed / 60);
   pending_length_ = m.length;
+  if (m.extruding && state_.position[kZ] > top_z_ + 1e-6) {
+    top_z_ = state_.position[kZ];
+    started_layer_ = ++layer_;
+  }
   if (planner_.size() >= static_cast<std::size_t>(config_.planner)) {
     wait_ = Wait::PlannerSlot;
     next_busy_ = t + kKeepalive;
@@ -380,7 +388,10 @@ bool VirtualPrinter::process_G4(const Line& line, double t) {
 }
 
 // G28, G29: homing or probing, after the moves before it.
-bool VirtualPrinter::process_G28(double t) { return wait_for_planner(t, 1, config_.instant_moves ? 0 : kHomingTime); }
+bool VirtualPrinter::process_G28(double t) {
+  homed_ = true;
+  return wait_for_planner(t, 1, config_.instant_moves ? 0 : kHomingTime);
+}
 
 // M400: waits for the moves to end.
 bool VirtualPrinter::process_M400(double t) { return wait_for_planner(t, 0, 0); }
@@ -477,6 +488,7 @@ bool VirtualPrinter::still_waiting(double t) {
 
 void VirtualPrinter::finish(double t) {
   Command& c = queue_.front();
+  long long number = c.number;
   ++stats_.executed;
   if (log_ != nullptr) {
     std::fprintf(log_, "%.6f\t%lld\t%.3f\t%.3f\t%.3f\t%.5f\t%s\n", t, c.number, state_.position[kX],
@@ -504,6 +516,10 @@ void VirtualPrinter::finish(double t) {
   queue_.pop_front();
   if (spare_.size() > 8) spare_.pop_front();
   wait_ = Wait::None;
+  ScheduledFault fault;
+  bool due = schedule_.take_after_command(number, started_layer_, fault);
+  started_layer_ = 0;
+  if (due) fire(fault, t);
 }
 
 double VirtualPrinter::travelled(double t) const {

@@ -39,6 +39,10 @@ void parse_virtual_options(std::string_view text, VirtualPrinterConfig& c) {
     std::string_view item = text.substr(0, comma);
     text = comma == std::string_view::npos ? std::string_view() : text.substr(comma + 1);
     if (item.empty()) continue;
+    if (item.find('@') != std::string_view::npos) {
+      c.scheduled.push_back(parse_scheduled_fault(item));
+      continue;
+    }
     std::size_t eq = item.find('=');
     std::string_view key = item.substr(0, eq);
     std::string_view value = eq == std::string_view::npos ? std::string_view() : item.substr(eq + 1);
@@ -87,6 +91,8 @@ void parse_virtual_options(std::string_view text, VirtualPrinterConfig& c) {
       c.disconnect_after = static_cast<long long>(count(0));
     } else if (key == "log") {
       c.log_path = std::string(value);
+    } else if (key == "greeting") {
+      c.greeting = parse_greeting_form(value);
     } else if (key == "seed") {
       c.seed = static_cast<std::uint32_t>(count(0));
     } else {

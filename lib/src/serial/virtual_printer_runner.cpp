@@ -19,8 +19,8 @@ namespace gcode::serial {
 
 namespace {
 
-// The signals that end the run, taken from a descriptor so the loop sees
-// them between events (blocked for the rest of the process).
+// The signals that end the run or fire a fault, taken from a descriptor so
+// the loop sees them between events (blocked for the rest of the process).
 class StopSignals {
  public:
   StopSignals() {
@@ -29,6 +29,8 @@ class StopSignals {
     sigaddset(&mask, SIGINT);
     sigaddset(&mask, SIGTERM);
     sigaddset(&mask, SIGHUP);
+    sigaddset(&mask, SIGUSR1);
+    sigaddset(&mask, SIGUSR2);
     sigprocmask(SIG_BLOCK, &mask, nullptr);
     fd_ = signalfd(-1, &mask, SFD_CLOEXEC | SFD_NONBLOCK);
   }
@@ -36,6 +38,11 @@ class StopSignals {
   StopSignals(const StopSignals&) = delete;
   StopSignals& operator=(const StopSignals&) = delete;
   int fd() const { return fd_; }
+  // The signal that arrived (0: none).
+  int take() const {
+    signalfd_siginfo info{};
+    return ::read(fd_, &info, sizeof info) == static_cast<ssize_t>(sizeof info) ? static_cast<int>(info.ssi_signo) : 0;
+  }
 
  private:
   int fd_ = -1;
@@ -51,9 +58,11 @@ std::string virtual_printer_summary(const VirtualPrinter& printer, bool link_dro
   const VirtualPrinterStats& s = printer.stats();
   return fmt::format(
       "executed {}, accepted lines {}, checksum errors {}, line number errors {}, overrun bytes {}, planner starved "
-      "{:.2f} %{}",
+      "{:.2f} %{}{}",
       s.executed, s.accepted_lines, s.checksum_errors, s.line_number_errors, s.overrun_bytes,
-      100 * printer.starvation(), link_dropped ? ", link dropped" : "");
+      100 * printer.starvation(),
+      s.resets + s.link_drops > 0 ? fmt::format(", resets {}, link drops {}", s.resets, s.link_drops) : "",
+      link_dropped ? ", link dropped" : "");
 }
 
 int run_virtual_printer(const VirtualPrinterRun& run, const VirtualPrinterConfig& config) {
@@ -65,13 +74,25 @@ int run_virtual_printer(const VirtualPrinterRun& run, const VirtualPrinterConfig
   }
   EventLoop loop;
   VirtualPrinter printer(config, log.get());
-  PseudoTerminal pty(run.link);
-  VirtualLink link(loop, printer, pty.master());
-  link.set_on_close([&loop] { loop.stop(); });
-  loop.add_fd(signals.fd(), POLLIN, [&loop](short) { loop.stop(); });
+  auto pty = std::make_unique<PseudoTerminal>(run.link);
   if (!run.quiet)
-    fmt::print(stderr, "{}: {} -> {}, {:g} baud, time scale {:g}\n", run.name, run.link, pty.slave_path(), config.baud,
+    fmt::print(stderr, "{}: {} -> {}, {:g} baud, time scale {:g}\n", run.name, run.link, pty->slave_path(), config.baud,
                config.time_scale);
+  VirtualLink link(loop, printer, pty->master());
+  link.set_on_close([&loop] { loop.stop(); });
+  // The host sees its port vanish (a hang-up, then no such file) and come
+  // back at the same path, as a USB serial device does.
+  link.set_on_drop([&pty] { pty.reset(); },
+                   [&pty, &run] {
+                     pty = std::make_unique<PseudoTerminal>(run.link);
+                     return pty->master();
+                   });
+  loop.add_fd(signals.fd(), POLLIN, [&](short) {
+    int sig = signals.take();
+    if (sig == SIGUSR1) link.reset_printer();
+    else if (sig == SIGUSR2) link.drop_link(run.drop_seconds, false);
+    else loop.stop();
+  });
   loop.run();
   log.reset();
   if (!run.quiet) fmt::print(stderr, "{}: {}\n", run.name, virtual_printer_summary(printer, link.closed()));

@@ -52,6 +52,15 @@ void VirtualWire::take(std::size_t n) {
   }
 }
 
+void VirtualWire::clear(double now) {
+  in_.clear();
+  head_ = 0;
+  next_ = now;
+  out_.clear();
+  out_head_ = 0;
+  out_free_at_ = now;
+}
+
 double VirtualWire::next_line_sent() const {
   if (out_head_ == out_.size()) return kNever;
   // Wake when the next whole line has been sent, not for every byte.

@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include "gcode/serial/virtual_fault.hpp"
+
 namespace gcode::serial {
 
 struct VirtualPrinterConfig;
@@ -27,8 +29,10 @@ struct Temperatures {
 class ReplyDialect {
  public:
   virtual ~ReplyDialect() = default;
-  // The greeting after a reset.
+  // The greeting at power-up.
   virtual std::string greeting() const = 0;
+  // The lines a board sends when it restarts, in one of the forms hosts meet.
+  virtual std::vector<std::string> restart_greeting(GreetingForm form) const = 0;
   // The answer to a command done; `number` -1: an unnumbered one. With
   // ADVANCED_OK the free planner blocks and queue slots.
   virtual std::string ok(long long number, bool advanced, int planner_free, int queue_free) const = 0;

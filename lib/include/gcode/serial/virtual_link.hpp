@@ -20,10 +20,23 @@ class VirtualLink {
   // The model dropped the link (disconnect fault): the descriptor should be closed.
   bool closed() const { return closed_; }
   void set_on_close(std::function<void()> f) { on_close_ = std::move(f); }
+  // A link drop (virtual_fault.hpp): `on_drop` is called when the model's
+  // link goes down (the descriptor is no longer used: close it, remove its
+  // path), `on_restore` when it comes back and returns the new descriptor.
+  // Without them the descriptor stays and the link is silent while down.
+  void set_on_drop(std::function<void()> on_drop, std::function<int()> on_restore) {
+    on_drop_ = std::move(on_drop);
+    on_restore_ = std::move(on_restore);
+  }
+  // Fires a fault now (gc-virtual-printer's signals): the model is brought
+  // up to now first.
+  void reset_printer();
+  void drop_link(double seconds, bool reset_after);
 
  private:
   void pump();
   void on_io(short revents);
+  void follow_link_state();
 
   EventLoop& loop_;
   VirtualPrinter& printer_;
@@ -35,6 +48,9 @@ class VirtualLink {
   std::string out_;  // transmitted by the model, not yet accepted by the fd
   bool closed_ = false;
   std::function<void()> on_close_;
+  bool down_ = false;
+  std::function<void()> on_drop_;
+  std::function<int()> on_restore_;
 };
 
 }  // namespace gcode::serial

@@ -25,8 +25,14 @@
 //    M110, M115 answer as Marlin does; M112 stops the printer at once;
 //  * faults can be injected: corrupted lines, lost "ok"s, spurious resend
 //    requests, garbage lines, busy stalls, going silent, a fatal error, a
-//    disconnect;
-//  * every executed command is logged with the simulated time and position.
+//    disconnect; and at chosen moments (virtual_fault.hpp) a reset (queue,
+//    planner, position, homing, heater targets and line numbers lost, the
+//    greeting again) or a link drop, the board running on or restarting;
+//  * every executed command is logged with the simulated time and position,
+//    and so are resets (with the line numbers they lost: moves that had left
+//    the queue but not the planner, and commands still queued) and drops, as
+//    lines starting with '#': across resets and drops the log shows every
+//    move the nozzle made.
 //
 // Its options are virtual_printer_options.hpp, the link virtual_wire.hpp,
 // the texts of its answers virtual_dialect.hpp (Marlin's); each command has
@@ -34,6 +40,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <deque>
+#include <limits>
 #include <random>
 #include <string>
 #include <string_view>
@@ -55,6 +62,7 @@ struct VirtualPrinterStats {
   std::uint64_t corrupted = 0, dropped_oks = 0, spurious_resends = 0, garbage_lines = 0, busy_stalls = 0;
   std::uint64_t rx_bytes = 0, tx_bytes = 0;
   std::uint64_t moves = 0;
+  std::uint64_t resets = 0, link_drops = 0;
   double first_move = -1;              // when the first block started
   double last_move_end = -1;           // when the last block ended
   double starved = 0;                  // planner empty while waiting for the next move
@@ -66,7 +74,10 @@ class VirtualPrinter {
 
   // Bytes written by the host at simulated time `now`: they reach the RX
   // buffer one byte time apart, after what is already on the wire.
-  void receive(std::string_view bytes, double now) { wire_.receive(bytes, now); }
+  // While the link is down they are lost.
+  void receive(std::string_view bytes, double now) {
+    if (!link_down_) wire_.receive(bytes, now);
+  }
   // Runs the model up to `now`.
   void advance(double now);
   // When the model next has something to do (an arriving byte, a finished
@@ -78,6 +89,18 @@ class VirtualPrinter {
   void take(std::size_t n) { wire_.take(n); }
 
   bool disconnected() const { return disconnected_; }
+  // The board restarts at `t` (after advance(t)): what it had queued and
+  // planned is lost, it greets again.
+  void reset(double t);
+  // The link goes down at `t` for `seconds`: bytes on the way are lost, the
+  // board executes what it has; with `reset_after` it restarts when the link
+  // comes back.
+  void drop_link(double t, double seconds, bool reset_after);
+  bool link_down() const { return link_down_; }
+  // Homed since the last reset (G28).
+  bool homed() const { return homed_; }
+  // Layers begun: new heights at which the printer extruded (kept across resets).
+  int layer() const { return layer_; }
   bool halted() const { return halted_; }
   const VirtualPrinterStats& stats() const { return stats_; }
   const VirtualPrinterConfig& config() const { return config_; }
@@ -139,6 +162,9 @@ class VirtualPrinter {
   bool heated() const;
   double heat_done_time() const;
   bool chance(double p);
+  void fire(const ScheduledFault& fault, double t);
+  void link_up(double t);
+  void note(const std::string& text);
 
   VirtualPrinterConfig config_;
   std::FILE* log_;
@@ -166,6 +192,7 @@ class VirtualPrinter {
 
   std::deque<double> planner_;  // durations; the front one runs
   std::deque<double> lengths_;  // their path lengths
+  std::deque<long long> block_numbers_;  // their commands' line numbers
   double pending_length_ = 0;   // of a move waiting for a planner block
   double done_length_ = 0;      // path of the blocks finished
   double queued_length_ = 0;    // path of every block added
@@ -178,6 +205,11 @@ class VirtualPrinter {
   long long last_n_ = 0;
   double hotend_ = 20, bed_ = 20, hotend_target_ = 0, bed_target_ = 0, temp_time_ = 0;
   bool halted_ = false, silent_ = false, disconnected_ = false;
+  FaultSchedule schedule_;
+  bool link_down_ = false, reset_on_up_ = false, homed_ = false;
+  double link_up_at_ = std::numeric_limits<double>::infinity();
+  int layer_ = 0, started_layer_ = 0;  // started_layer_: by the command executing
+  double top_z_ = -1e300;
   std::mt19937 rng_;
   VirtualPrinterStats stats_;
 };

@@ -5,6 +5,9 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
+
+#include "gcode/serial/virtual_fault.hpp"
 
 namespace gcode::serial {
 
@@ -28,6 +31,8 @@ struct VirtualPrinterConfig {
   long long silent_after = -1;     // stop answering after this many commands
   long long halt_after = -1;       // report a fatal error after this many commands
   long long disconnect_after = -1; // drop the link after this many commands
+  std::vector<ScheduledFault> scheduled;      // resets and link drops at chosen moments
+  GreetingForm greeting = GreetingForm::Start; // how a reset board greets
   std::uint32_t seed = 1;
   std::string log_path;       // where the caller writes the executed-command log
 };
@@ -35,7 +40,8 @@ struct VirtualPrinterConfig {
 // Applies "key=value,key=value" (the part after "virtual:") to `config`.
 // Keys: baud queue rx max-line planner time-scale advanced-ok instant-moves
 // report-link heat-rate corrupt drop-ok resend garbage busy silent-after
-// halt-after disconnect-after seed log. Throws std::invalid_argument naming a bad key or value.
+// halt-after disconnect-after seed log greeting, and scheduled faults
+// (virtual_fault.hpp: "reset@line=N", "drop=S@time=T"). Throws std::invalid_argument naming a bad key or value.
 void parse_virtual_options(std::string_view text, VirtualPrinterConfig& config);
 
 }  // namespace gcode::serial

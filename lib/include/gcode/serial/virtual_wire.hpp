@@ -32,6 +32,8 @@ class VirtualWire {
   // Bytes fully sent by `now`; the host takes them with take(n).
   std::string_view transmitted(double now) const;
   void take(std::size_t n);
+  // The link is cut at `now`: whatever was on the way, either way, is lost.
+  void clear(double now);
   // When the next whole line has been sent (kNever: nothing to send).
   double next_line_sent() const;
 
