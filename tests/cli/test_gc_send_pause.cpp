@@ -405,3 +405,93 @@ TEST_CASE("gc-send: a pause asked in the start code comes right before layer 1",
   CHECK(layer[input[c.prefix - 1].source_line] == 0);
   CHECK(layer[input[c.prefix].source_line] == 1);
 }
+
+// The pause and resume blocks of a run without a park position, split at
+// the wait: the lines the printer ran before it and after it.
+struct Unparked {
+  std::vector<Executed> pause, resume;
+};
+
+Unparked split_at_wait(const std::vector<Executed>& log, const Checked& c) {
+  Unparked u;
+  std::size_t split = c.prefix;
+  double longest = -1;
+  for (std::size_t i = c.prefix; i < c.prefix + c.block; ++i) {
+    double gap = log[i + 1].time - log[i].time;
+    if (gap > longest) {
+      longest = gap;
+      split = i + 1;
+    }
+  }
+  u.pause.assign(log.begin() + static_cast<std::ptrdiff_t>(c.prefix), log.begin() + static_cast<std::ptrdiff_t>(split));
+  u.resume.assign(log.begin() + static_cast<std::ptrdiff_t>(split),
+                  log.begin() + static_cast<std::ptrdiff_t>(c.prefix + c.block));
+  return u;
+}
+
+TEST_CASE("gc-send: a pause on a file without a bed retracts and lifts where it is, then returns exactly",
+          "[gc-send][pause]") {
+  // The cut fixture has lost its settings: no bed, no height. --max-z 1 (the
+  // printer's height) in the second run stops the lift below the usual 2 mm.
+  const std::string& file = pieces_file();
+  auto input = gctest::commands_of(gctest::read_file(file));
+  for (const char* max_z : {"", "--max-z 1"}) {
+    INFO("options: " << max_z);
+    PauseRun r = send_with_control(file, "time-scale=20,instant-moves,heat-rate=1000",
+                                   std::string("--no-pace ") + max_z,
+                                   "at_layer 1; echo pause > \"$F\"; paused; sleep 0.3; echo resume > \"$F\"", "");
+    INFO(r.result.err);
+    REQUIRE(r.result.status == 0);
+    CHECK(r.result.err.find("cannot park") == std::string::npos);
+    CHECK(r.result.err.find("no park position (the file does not say how big the bed is") != std::string::npos);
+    std::uint64_t last = static_cast<std::uint64_t>(number_after(r.result.err, "pause block sent after input line "));
+    Checked c = check_one_pause(r.log, input, last);
+    REQUIRE(c.block >= 2);
+    Unparked u = split_at_wait(r.log, c);
+    // While paused nothing ran: the wait is the run's longest gap.
+    CHECK(u.resume.front().time - u.pause.back().time >= 0.25);
+    gcode::MachineState before = state_after(r.log, c.prefix);
+    gcode::MachineState parked = state_after(r.log, c.prefix + u.pause.size());
+    gcode::MachineState after = state_after(r.log, c.prefix + c.block);
+    // No travel: X and Y never leave the point where the print stopped.
+    gcode::MachineState s = before;
+    double filament = 0;
+    for (const Executed& e : u.pause) {
+      filament += s.apply(gcode::Line::parse(e.command)).filament;
+      CHECK(s.at(gcode::kX) == before.at(gcode::kX));
+      CHECK(s.at(gcode::kY) == before.at(gcode::kY));
+    }
+    CHECK(filament < 0);  // retracted (the file had not) ...
+    const double lift = parked.at(gcode::kZ).to_double() - before.at(gcode::kZ).to_double();
+    if (*max_z == '\0') {
+      CHECK(lift >= 2 - 1e-9);  // ... and lifted by the pause's lift
+    } else {
+      CHECK(parked.at(gcode::kZ).to_double() == Approx(1));  // no higher than the printer goes
+      CHECK(r.result.err.find("the printer's height, Z1, stops it there") != std::string::npos);
+    }
+    for (int a : {gcode::kX, gcode::kY, gcode::kZ, gcode::kE}) CHECK(after.at(a) == before.at(a));
+    CHECK(after.relative_xyz == before.relative_xyz);
+    CHECK(after.relative_e == before.relative_e);
+    CHECK(after.feedrate == before.feedrate);
+  }
+}
+
+TEST_CASE("gc-send: a cancel on a file without a bed retracts and lifts before the heaters go off", "[gc-send][pause]") {
+  const std::string& file = pieces_file();
+  PauseRun r = send_with_control(file, "time-scale=5,instant-moves,heat-rate=1000", "",
+                                 "at_layer 1; echo cancel > \"$F\"", "");
+  INFO(r.result.err);
+  REQUIRE(r.result.status == 0);
+  CHECK(r.result.err.find("cancel: no park position") != std::string::npos);
+  REQUIRE(r.log.size() > 6);
+  check_cancel_park(r.log, gctest::commands_of(gctest::read_file(file)));
+  // The park is a lift: above where the print stopped.
+  gcode::MachineState end = state_after(r.log, r.log.size());
+  gcode::MachineState s;
+  double highest_printed = 0;
+  for (const Executed& e : r.log) {
+    gcode::Move m = s.apply(gcode::Line::parse(e.command));
+    if (m.extruding) highest_printed = std::max(highest_printed, s.at(gcode::kZ).to_double());
+  }
+  CHECK(end.at(gcode::kZ).to_double() >= highest_printed + 2 - 1e-9);
+}

@@ -70,13 +70,14 @@ struct PauseRun {
 };
 
 // gc-send on the in-process printer with a control FIFO; `script` runs once
-// the FIFO is there, with $F the FIFO and $S the status file.
+// the FIFO is there, with $F the FIFO and $S the status file. `bed`: how
+// gc-send learns the bed ("": not at all, as for a file that does not say).
 inline PauseRun send_with_control(const std::string& file, const std::string& printer, const std::string& args,
-                           const std::string& script) {
+                           const std::string& script, const std::string& bed = "--bed 250x210") {
   std::string dir = temp_dir();
   std::string fifo = dir + "/control.fifo", status = dir + "/status.json", log = dir + "/executed.log";
   std::string cmd = "F=" + quote(fifo) + "; S=" + quote(status) + "\n" + quote(tool_path("gc-send")) +
-                    " -v --port virtual:" + printer + ",log=" + log + " --control \"$F\" --status-file \"$S\" --bed 250x210 " + args +
+                    " -v --port virtual:" + printer + ",log=" + log + " --control \"$F\" --status-file \"$S\" " + bed + " " + args +
                     " " + quote(file) +
                     " & p=$!\n"
                     "for i in $(seq 500); do [ -p \"$F\" ] && break; sleep 0.01; done\n"

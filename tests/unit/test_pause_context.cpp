@@ -104,6 +104,27 @@ TEST_CASE("park rules: no --park and no bed size is an error", "[pause_context]"
   CHECK(place_error(none, PauseContext(), PauseConfig()).find("park position is unknown") != std::string::npos);
 }
 
+TEST_CASE("park rules: a live pause without a park position lifts where it is and pushes nothing there",
+          "[pause_context]") {
+  PauseContext c = observed(kPrint);
+  PauseConfig config;
+  config.reload = 10;
+  config.purge = 5;
+  config.prime = 1;
+  std::string note = ParkRules().place_or_lift(c, gcode::Precision(), config);
+  CHECK(note.find("no park position") != std::string::npos);
+  CHECK(note.find("no reload, purge or prime") != std::string::npos);
+  CHECK_FALSE(config.park);
+  CHECK(config.reload == 0);
+  CHECK(config.purge == 0);
+  CHECK(config.prime == 0);
+  // With a bed it parks as place() does, and says nothing.
+  PauseConfig parked;
+  CHECK(bed_220().place_or_lift(c, gcode::Precision(), parked).empty());
+  CHECK(parked.park);
+  CHECK(parked.park_y == 210);
+}
+
 TEST_CASE("park rules: the back of the bed, centred on the print", "[pause_context]") {
   PauseContext c = observed(kPrint);
   PauseConfig config;

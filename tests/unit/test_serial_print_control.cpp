@@ -475,3 +475,46 @@ TEST_CASE("print control: the printer's host actions", "[serial][print_control]"
   rig.control().action("cancel");
   CHECK(rig.control().cancelled());
 }
+
+// A file that does not say how big the bed is, and no --park: nowhere to
+// park, yet the nozzle must not stay on the part.
+PrintControlConfig unparked_config(double max_z = 0) {
+  PrintControlConfig c;
+  c.pause.max_z = max_z;
+  c.pause.purge = 5;  // would drop on the part: left out
+  return c;
+}
+
+TEST_CASE("print control: without a park position a pause retracts and lifts where it is and returns exactly",
+          "[serial][print_control]") {
+  Rig rig(kThreeLayers, 1, unparked_config());
+  const std::size_t paused = pause_in_layer_two(rig);
+  // Retract 2 mm, lift 2 mm above the layer; no travel, no purge.
+  CHECK(tail_of(rig, paused - 2) == Lines{"G1 E5 F2100", "G1 Z2.4 F600"});
+  rig.command(ControlVerb::Resume);
+  rig.run();
+  // Straight down to the layer's Z, the retraction pushed back, E, mode
+  // and feed rate as the file had them; then layer 3.
+  CHECK(tail_of(rig, paused) == Lines{"G1 Z0.4 F600", "G1 E7 F2100", "M82", "G92 E7", "G1 F3600", "G1 Z0.6 F600",
+                                      "G1 X20 Y40 E8 F1200", "G1 X20 Y50 E9", "M104 S0", "M400"});
+  CHECK(rig.sender().state() == SenderState::Done);
+}
+
+TEST_CASE("print control: without a park position the lift stops at the printer's height", "[serial][print_control]") {
+  Rig rig(kThreeLayers, 1, unparked_config(1.5));
+  const std::size_t paused = pause_in_layer_two(rig);
+  CHECK(tail_of(rig, paused - 2) == Lines{"G1 E5 F2100", "G1 Z1.5 F600"});
+  rig.command(ControlVerb::Resume);
+  rig.run();
+  CHECK(tail_of(rig, paused).front() == "G1 Z0.4 F600");
+}
+
+TEST_CASE("print control: without a park position a cancel retracts and lifts, then heaters and motors off",
+          "[serial][print_control]") {
+  Rig rig(kThreeLayers, 8, unparked_config());
+  rig.ok(3);
+  rig.command(ControlVerb::Cancel);
+  rig.run();
+  CHECK(rig.wire() == Lines{"G28", "G90", "M82", "M104 S200", "G92 E0", "G1 Z0.2 F600", "G1 X10 Y10 F3000",
+                            "G1 E-2 F2100", "G1 Z2.2 F600", "M104 S0", "M140 S0", "M107", "M84", "M400"});
+}

@@ -34,6 +34,15 @@ std::string exact(Fixed v) {
   return std::string(buffer, v.format(Fixed::kDecimals, buffer));
 }
 
+// What a block without a park position did: `note` (ParkRules::place_or_lift)
+// and how high it got, from `z`, and why no higher where the printer's
+// height stopped it.
+std::string unparked(std::string_view note, double z, double lifted_to, double max_z) {
+  std::string text = fmt::format("{}: lifted from Z{} to Z{}", note, z, lifted_to);
+  if (max_z > 0 && lifted_to >= max_z - 1e-9) text += fmt::format(" (the printer's height, Z{}, stops it there)", max_z);
+  return text;
+}
+
 }  // namespace
 
 std::string_view print_state_name(PrintState state) {
@@ -245,14 +254,17 @@ void PrintControl::pause_here(const MachineState& at) {
   for (std::string* text : {&c.message, &c.host_message, &c.before_wait, &c.after_wait})
     *text = expand_placeholders(*text, values);
   PauseBlock block;
+  std::string note;
   try {
-    config_.park.place(printed_, precision_, c);
+    note = config_.park.place_or_lift(printed_, precision_, c);
     block = build_pause(printed_.point(at, &precision_), c);
   } catch (const std::exception& e) {
     diag_.warn(0, fmt::format("{}: cannot park ({}); holding the print where it is", r.request, e.what()));
     hold_here(r.request);
     return;
   }
+  if (!note.empty())
+    diag_.warn(0, fmt::format("{}: {}", r.request, unparked(note, at.position[kZ], block.park_z, c.max_z)));
   r.input_line = last_source_;
   r.block_number = sender_.last_submitted() + 1;
   r.block = true;
@@ -424,8 +436,10 @@ std::vector<std::string> PrintControl::safe_end(const MachineState& at, bool par
     c.beep = false;
     c.stepper_hold = 0;
     try {
-      config_.park.place(printed_, precision_, c);
-      lines = build_pause(printed_.point(at, &precision_), c).pause;
+      std::string note = config_.park.place_or_lift(printed_, precision_, c);
+      PauseBlock block = build_pause(printed_.point(at, &precision_), c);
+      lines = std::move(block.pause);
+      if (!note.empty()) diag_.warn(0, "cancel: " + unparked(note, at.position[kZ], block.park_z, c.max_z));
     } catch (const std::exception& e) {
       diag_.warn(0, fmt::format("cancel: cannot park ({}); heaters and motors off where the head is", e.what()));
     }

@@ -49,4 +49,21 @@ void ParkRules::place(const PauseContext& context, const Precision& precision, P
                              "): purging there would drop a blob on it; choose --park outside the print");
 }
 
+std::string ParkRules::place_or_lift(const PauseContext& context, const Precision& precision, PauseConfig& c) const {
+  if (given || area.has_bed) {
+    place(context, precision, c);
+    return {};
+  }
+  c.park = false;
+  std::string what =
+      "no park position (the file does not say how big the bed is; give --park X,Y or --bed WIDTHxDEPTH): "
+      "retract and lift where the head is";
+  if (c.reload > 0 || c.purge > 0 || c.prime > 0) {
+    // Above the part, pushed filament would drop on it.
+    c.reload = c.purge = c.prime = 0;
+    what += ", no reload, purge or prime above the print";
+  }
+  return what;
+}
+
 }  // namespace gcode

@@ -138,8 +138,9 @@ void write_pause(Transition& t, const PausePoint& point, const Precision& precis
   retract(t, point, run);
   heights(t, point, precision, run);
   if (run.park_z > run.z0) t.move_z(run.park_z);
-  t.move_xy(Fixed::from_double(c.park_x).rounded(precision.of('X')),
-            Fixed::from_double(c.park_y).rounded(precision.of('Y')));
+  if (c.park)
+    t.move_xy(Fixed::from_double(c.park_x).rounded(precision.of('X')),
+              Fixed::from_double(c.park_y).rounded(precision.of('Y')));
   if (c.wait_for_moves) t.line("M400");
   // Unload while the nozzle is still at printing temperature.
   t.extrude_mm(-c.unload, c.unload_speed);
@@ -166,9 +167,11 @@ void write_resume(Transition& t, const PausePoint& point, const PauseRun& run) {
     t.extrude_mm(-in_effect, c.retract_speed);
     if (fw_in_effect) t.firmware_retraction(true);
   }
-  if (run.park_z > run.safe) t.move_z(run.safe);
-  t.move_xy(s.at(kX), s.at(kY));
-  if (run.safe != run.z0) t.move_z(run.z0);
+  if (c.park) {
+    if (run.park_z > run.safe) t.move_z(run.safe);
+    t.move_xy(s.at(kX), s.at(kY));
+  }
+  if (run.park_z != run.z0) t.move_z(run.z0);
   t.extrude_mm(run.we_e, c.unretract_speed);
   if (run.we_fw) t.firmware_retraction(false);
   if (s.relative_xyz) t.line("G91");

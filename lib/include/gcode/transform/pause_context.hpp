@@ -60,6 +60,11 @@ struct ParkRules {
   // the block pushes filament (reload, purge, prime) with the head above the
   // print: the blob would land on it.
   void place(const PauseContext& context, const Precision& precision, PauseConfig& config) const;
+  // A live pause (gc-send) never stays on the part: with a park position,
+  // place(); without one, config.park = false (retract and lift where the
+  // head is) and no filament pushed there (reload, purge and prime left out).
+  // Returns what could not be done, for a warning; empty when parked.
+  std::string place_or_lift(const PauseContext& context, const Precision& precision, PauseConfig& config) const;
 };
 
 }  // namespace gcode

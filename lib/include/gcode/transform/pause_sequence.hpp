@@ -62,6 +62,10 @@ struct PauseConfig {
   double max_z = 0;            // printer's Z limit; 0 = unknown (no cap)
   double park_x = 0;
   double park_y = 0;
+  // false: no park position is known (a file that does not say how big the
+  // bed is): the block retracts and lifts where the head is, with no travel,
+  // and the resume comes straight down. Lifted, the nozzle is off the part.
+  bool park = true;
   double travel_speed = 60;
   bool wait_for_moves = false; // M400 before the wait
   bool standby = false;        // set standby_temp while waiting
