@@ -5,6 +5,7 @@
 #include <charconv>
 
 #include "gcode/serial/control_fifo.hpp"
+#include "gcode/serial/journal.hpp"
 #include "gcode/serial/line_check.hpp"
 #include "gcode/transform/custom_gcode.hpp"
 
@@ -49,6 +50,11 @@ void add_send_options(Tool& tool, SendOptions& o) {
                  "0600, refused if not a FIFO, another user's, or writable by others")
       ->type_name("PATH")->group(control);
   app.add_flag("--no-control", o.no_control, "No control FIFO")->group(control)->excludes("--control");
+  app.add_option("--journal", o.journal,
+                 "Journal of what was sent, for a resume after a fault (default $XDG_STATE_HOME/gc-send/PORT.journal, "
+                 "else ~/.local/state/gc-send/PORT.journal); made 0600, refused in a folder others can write")
+      ->type_name("PATH")->group(control);
+  app.add_flag("--no-journal", o.no_journal, "Keep no journal")->group(control)->excludes("--journal");
   app.add_option("--rush", j.control.rush, "After a pause request, the rest of the layer runs this many times faster")
       ->type_name("FACTOR")->capture_default_str()->check(CLI::Range(1.0, 10.0))->group(control);
   app.add_option("--max-speed", j.control.max_speed, "Cap on rushed moves, mm/s (default: none)")
@@ -118,6 +124,7 @@ void resolve_send_options(Tool& tool, SendOptions& o) {
   resolve_pause_options(o.pause);
   j.control.pause = o.pause.config;
   j.control_path = o.no_control ? std::string() : !o.control.empty() ? o.control : serial::default_control_path(j.port);
+  j.journal_path = o.no_journal ? std::string() : !o.journal.empty() ? o.journal : serial::default_journal_path(j.port);
   j.progress.mode = isatty(STDERR_FILENO) ? serial::ProgressMode::Live : serial::ProgressMode::Plain;
   j.progress.interval = o.interval;
   PauseOptions* pause = &o.pause;

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <stdexcept>
 
@@ -14,7 +15,9 @@
 #include "gcode/pipeline/pipeline.hpp"
 #include "gcode/report/layer_time.hpp"
 #include "gcode/serial/event_loop.hpp"
+#include "gcode/serial/input_identity.hpp"
 #include "gcode/serial/port.hpp"
+#include "gcode/serial/send_journal.hpp"
 #include "gcode/serial/send_session.hpp"
 #include "gcode/serial/virtual_link.hpp"
 
@@ -78,6 +81,22 @@ void print_summary(const Sender& sender, const VirtualPrinter* printer, const Pr
   }
 }
 
+// The input as the journal names it: a file by its absolute path, so that
+// a resume from another folder finds it; "-" for standard input.
+std::string input_name(const std::string& file) {
+  if (file.empty() || file == "-") return "-";
+  char* real = ::realpath(file.c_str(), nullptr);
+  if (real == nullptr) return file;
+  std::string out(real);
+  std::free(real);
+  return out;
+}
+
+void print_journal_summary(const JournalWriter& w) {
+  fmt::print(stderr, "gc-send: journal {}: {} bytes written, {} on disk, {} syncs, {} compactions\n", w.path(),
+             w.bytes_written(), w.file_bytes(), w.syncs(), w.compactions());
+}
+
 }  // namespace
 
 bool is_virtual_port(const std::string& port) {
@@ -87,6 +106,12 @@ bool is_virtual_port(const std::string& port) {
 int run_send_job(SendJob& job, Diagnostics& diag) {
   InputFile input(job.file);
   EventLoop loop;
+  // The journal first: one that cannot be kept stops the print before
+  // anything reaches the printer.
+  std::unique_ptr<SendJournal> journal;
+  if (!job.journal_path.empty())
+    journal = std::make_unique<SendJournal>(JournalOptions{.path = job.journal_path},
+                                            identify_input(input_name(job.file), input.fd()), job.port);
 
   // The port: a real device or pty, or a socketpair to an in-process model.
   int port_fd = -1;
@@ -140,6 +165,7 @@ int run_send_job(SendJob& job, Diagnostics& diag) {
   sender.set_trace(trace || log != nullptr);
   SendSession session(loop, sender, input.fd(), port_fd, diag,
                       job.layer_marker.empty() ? LayerMarkers() : LayerMarkers(job.layer_marker));
+  if (journal) session.set_journal(journal.get());
   PrintControlConfig control = job.control;
   if (job.park) control.park = job.park(session.read_print_area(), control.pause);
   int e_relative = session.read_e_mode(job.e_mode, input.name());
@@ -179,7 +205,10 @@ int run_send_job(SendJob& job, Diagnostics& diag) {
   if (session.fifo() != nullptr) diag.info(fmt::format("control FIFO: {}", session.fifo()->path()));
   session.run();
 
+  if (journal && (sender.state() == SenderState::Done || sender.state() == SenderState::Cancelled))
+    journal->finish(EventLoop::now());
   if (!job.quiet) print_summary(sender, printer.get(), *session.control(), baud, scale, pty);
+  if (journal && !job.quiet) print_journal_summary(journal->writer());
   if (vlog != nullptr) std::fclose(vlog);
   if (log != nullptr) std::fclose(log);
   if (model_fd >= 0) ::close(model_fd);

@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <system_error>
@@ -135,6 +136,52 @@ void SendSession::set_control(const PrintControlConfig& config, const std::strin
   });
 }
 
+void SendSession::set_journal(SendJournal* journal) {
+  journal_ = journal;
+  if (journal_ == nullptr) return;
+  sender_.set_journal_hooks(
+      [this](long long n, std::uint64_t source_line, int layer, const MachineState& after) {
+        journal_->numbered(n, source_line, layer, after);
+      },
+      [this](long long n) { journal_->acknowledged(n); });
+  // At least once a second, whether or not anything else happens.
+  journal_due_ = EventLoop::now();
+  loop_.add_timer([this] { return journal_due_; },
+                  [this](double now) {
+                    journal_->flush(now);
+                    journal_due_ = journal_->next_sync(now);
+                  });
+}
+
+void SendSession::skip_printed(std::uint64_t bytes, std::uint64_t hash_bytes, std::uint64_t lines, int layer,
+                               const MachineState& state) {
+  PrefixHash hash;
+  std::uint64_t done = 0;
+  const std::uint64_t need = std::max(bytes, hash_bytes);
+  std::string block(kReadSize, '\0');
+  while (done < need) {
+    ssize_t n = ::read(input_fd_, block.data(), block.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw std::runtime_error(fmt::format("cannot read the input: {}", std::strerror(errno)));
+    if (n == 0) break;
+    std::string_view got(block.data(), static_cast<std::size_t>(n));
+    if (done < hash_bytes) hash.update(got.substr(0, static_cast<std::size_t>(std::min<std::uint64_t>(hash_bytes - done, got.size()))));
+    if (done < bytes) {
+      std::string_view printed = got.substr(0, static_cast<std::size_t>(std::min<std::uint64_t>(bytes - done, got.size())));
+      if (journal_ != nullptr) journal_->fed(printed);
+      got.remove_prefix(printed.size());
+    }
+    in_buf_.append(got);
+    done += static_cast<std::uint64_t>(n);
+  }
+  skipped_hash_ = done >= hash_bytes ? hash.digest() : 0;
+  skipped_bytes_ = std::min(done, bytes);
+  input_bytes_ = byte_base_ = skipped_bytes_;
+  line_base_ = lines;
+  layer_base_ = layer;
+  pipeline_.start_from(state);
+}
+
 void SendSession::run() {
   if (!control_) set_control(PrintControlConfig{}, std::string());
   control_->add_stages(pipeline_);
@@ -152,11 +199,17 @@ void SendSession::run() {
 
 // The input's pipeline: nothing of it goes on once a swap left it.
 void SendSession::line(const TrackedLine& t, Emitter&) {
-  if (current_ == nullptr) deliver(t, 0, 0);
+  if (current_ != nullptr) return;
+  deliver(t, layer_base_, line_base_);
 }
 
 void SendSession::layer(const LayerInfo& info, const MachineState& before, Emitter&) {
-  if (current_ == nullptr) control_->layer(info, before);
+  if (current_ != nullptr) return;
+  if (journal_ != nullptr) journal_->layer_began();
+  LayerInfo shifted = info;
+  shifted.index += layer_base_;
+  shifted.first_line += line_base_;
+  control_->layer(shifted, before);
 }
 
 void SendSession::end_code(const EndCodeInfo&, const MachineState& before, Emitter&) {
@@ -254,6 +307,10 @@ void SendSession::feed_input() {
       if (!input_eof_) break;
       if (in_pos_ < in_buf_.size()) {
         // A last line without a newline.
+        if (journal_ != nullptr) {
+          journal_->fed(std::string_view(in_buf_).substr(in_pos_));
+          journal_->line_end(line_base_ + ++fed_lines_, in_buf_.size() - in_pos_ + input_bytes_);
+        }
         pipeline_.feed(std::string_view(in_buf_).substr(in_pos_));
         input_bytes_ += in_buf_.size() - in_pos_;
         in_pos_ = in_buf_.size();
@@ -263,7 +320,15 @@ void SendSession::feed_input() {
       control_->end_of_input();
       break;
     }
-    pipeline_.feed(std::string_view(in_buf_).substr(in_pos_, nl + 1 - in_pos_));
+    std::string_view fed = std::string_view(in_buf_).substr(in_pos_, nl + 1 - in_pos_);
+    // Where each line ends, by count (a stage may rewrite a line's text),
+    // known before the line can reach the sender.
+    ++fed_lines_;
+    if (journal_ != nullptr) {
+      journal_->fed(fed);
+      journal_->line_end(line_base_ + fed_lines_, input_bytes_ + fed.size());
+    }
+    pipeline_.feed(fed);
     input_bytes_ += nl + 1 - in_pos_;
     in_pos_ = nl + 1;
     // Out at once if the flow control allows: the sender holds only a line
@@ -300,6 +365,8 @@ void SendSession::read_port() {
 }
 
 void SendSession::flush_port() {
+  // Every command's record goes to the journal before its bytes go out.
+  if (journal_ != nullptr && !sender_.output().empty()) journal_->flush(EventLoop::now());
   while (!sender_.output().empty()) {
     std::string_view out = sender_.output();
     ssize_t n = ::write(port_fd_, out.data(), out.size());
@@ -367,6 +434,13 @@ void SendSession::report(bool force) {
 }
 
 void SendSession::update() {
+  if (journal_ != nullptr) {
+    LiveControl live;
+    live.speed = control_->speed();
+    live.state = control_->state_label();
+    live.paused = control_->state() == PrintState::Paused;
+    journal_->live(live);
+  }
   feed_input();
   sender_.pump(EventLoop::now());
   flush_port();

@@ -44,6 +44,13 @@ void Sender::start(double now) {
   }
 }
 
+void Sender::continue_from(long long next, const MachineState& printer) {
+  next_number_ = next_send_ = next;
+  highest_sent_ = next - 1;
+  last_acked_.number = next - 1;
+  machine_ = printer;
+}
+
 void Sender::grow_ring() {
   std::vector<Slot> bigger(ring_.size() * 2);
   long long from = std::max<long long>(1, next_send_ - kHistory);
@@ -105,6 +112,7 @@ void Sender::enqueue(std::string_view command, std::uint64_t source_line, int la
   s.long_running = config_.firmware->is_long_running(line);
   s.temperature_query = line.is_m(105);
   Move move = machine_.apply(line);
+  if (on_numbered_) on_numbered_(next_number_, source_line, layer, machine_);
   // Until the estimator's time is final (16 moves later), length / feed rate.
   s.motion = 0;
   s.motion_final = false;
@@ -265,6 +273,7 @@ void Sender::acknowledge_front(double now) {
   planned(s, now);
   if (f.number > last_acked_.number) {
     last_acked_.number = f.number;
+    if (on_acknowledged_) on_acknowledged_(f.number);
     if (s.source_line != 0) {
       last_acked_.source_line = s.source_line;
       last_acked_.layer = s.layer;

@@ -22,6 +22,8 @@ struct SendOptions {
   double timeout = 10;
   std::string control;      // --control PATH
   bool no_control = false;
+  std::string journal;      // --journal PATH
+  bool no_journal = false;
   std::string pause_on;     // M0,M1,...
   std::string cancel_gcode;
   bool no_pace = false;

@@ -31,6 +31,8 @@ struct SendJob {
   std::string control_path;         // "" = none
   ProgressOptions progress;
   std::string log_path;             // every line both ways with timestamps
+  std::string journal_path;         // "" = no journal (--no-journal)
+  bool resume = false;              // --resume: go on with the print journal_path holds
   bool quiet = false;
   int verbose = 0;
 };

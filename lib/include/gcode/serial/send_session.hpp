@@ -32,6 +32,7 @@
 #include "gcode/serial/event_loop.hpp"
 #include "gcode/serial/print_control.hpp"
 #include "gcode/serial/progress.hpp"
+#include "gcode/serial/send_journal.hpp"
 #include "gcode/serial/sender.hpp"
 
 namespace gcode::serial {
@@ -64,6 +65,18 @@ class SendSession : private Stage {
   // The estimator's printer seconds for the whole input (sender_estimator_options),
   // when known beforehand: the ETA goes by it.
   void set_estimated_time(double seconds) { estimated_total_ = seconds; }
+  // Keeps the journal (not owned) while printing: before run().
+  void set_journal(SendJournal* journal);
+  // A resume: the input's first `bytes` were printed before (they are read
+  // and hashed, not fed), its lines count on from `lines`, its layers from
+  // `layer`, and the pipeline starts where the machine stood (`state`).
+  // `hash_bytes`: how many of the first bytes skipped_hash() covers (a
+  // checkpoint of the journal, maybe a little past `bytes`).
+  void skip_printed(std::uint64_t bytes, std::uint64_t hash_bytes, std::uint64_t lines, int layer,
+                    const MachineState& state);
+  // The hash of the input's first `hash_bytes` (0 when the input ended before).
+  std::uint64_t skipped_hash() const { return skipped_hash_; }
+  std::uint64_t skipped_bytes() const { return skipped_bytes_; }
   PrintControl* control() { return control_.get(); }
   const ControlFifo* fifo() const { return fifo_.get(); }
 
@@ -128,6 +141,14 @@ class SendSession : private Stage {
   // Swapped-in files, all kept: a swap starts inside a pipeline's call.
   std::vector<std::unique_ptr<Segment>> segments_;
   Segment* current_ = nullptr;  // what is fed now (null: the input)
+  SendJournal* journal_ = nullptr;
+  double journal_due_ = 0;         // the journal's next timed flush
+  std::uint64_t line_base_ = 0;    // a resume: input lines before the first one fed
+  int layer_base_ = 0;             // ... and layers printed before it
+  std::uint64_t byte_base_ = 0;    // ... and bytes
+  std::uint64_t skipped_hash_ = 0;
+  std::uint64_t skipped_bytes_ = 0;
+  std::uint64_t fed_lines_ = 0;     // input lines fed to the pipeline (a resume's not counted)
 };
 
 }  // namespace gcode::serial

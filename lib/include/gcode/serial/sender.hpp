@@ -137,6 +137,19 @@ class Sender : private TimeSink {
   // handler a pause holds sending until the resume.
   using ActionHandler = std::function<void(std::string_view action)>;
   void set_action_handler(ActionHandler handler) { on_action_ = std::move(handler); }
+  // The journal's hooks (send_journal.hpp): a command got its number, with
+  // the machine state after it (called before its bytes can go out); the
+  // printer acknowledged a numbered line.
+  using NumberedHook = std::function<void(long long n, std::uint64_t source_line, int layer, const MachineState& after)>;
+  using AcknowledgedHook = std::function<void(long long n)>;
+  void set_journal_hooks(NumberedHook numbered, AcknowledgedHook acknowledged) {
+    on_numbered_ = std::move(numbered);
+    on_acknowledged_ = std::move(acknowledged);
+  }
+  // A resume (gc-send --resume): the printer kept running and expects line
+  // `next` now, standing as `printer` says. Before start(), with the
+  // handshake off: M110 N0 would throw away the numbering it goes on with.
+  void continue_from(long long next, const MachineState& printer);
   // Nothing waits to be sent and nothing is in flight.
   bool idle() const { return pending() == 0 && flight_.empty() && output().empty(); }
   // The number the last submitted command got (0: none yet).
@@ -280,6 +293,8 @@ class Sender : private TimeSink {
   std::string failure_;
   bool trace_ = false;
   ActionHandler on_action_;
+  NumberedHook on_numbered_;
+  AcknowledgedHook on_acknowledged_;
   std::string temperatures_;
   Pacer pacer_;
 };
