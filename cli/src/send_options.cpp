@@ -55,6 +55,11 @@ void add_send_options(Tool& tool, SendOptions& o) {
                  "else ~/.local/state/gc-send/PORT.journal); made 0600, refused in a folder others can write")
       ->type_name("PATH")->group(control);
   app.add_flag("--no-journal", o.no_journal, "Keep no journal")->group(control)->excludes("--journal");
+  app.add_option("--resume", o.resume,
+                 "Go on with the print a journal holds (default: the port's journal; a path ending in .journal) "
+                 "after gc-send was killed or crashed: checks that FILE (default: the journal's) is the same input, "
+                 "asks the printer which line it took last and where it stands, and goes on from the next line")
+      ->type_name("[JOURNAL]")->expected(0, 1)->group(control);
   app.add_option("--rush", j.control.rush, "After a pause request, the rest of the layer runs this many times faster")
       ->type_name("FACTOR")->capture_default_str()->check(CLI::Range(1.0, 10.0))->group(control);
   app.add_option("--max-speed", j.control.max_speed, "Cap on rushed moves, mm/s (default: none)")
@@ -82,6 +87,28 @@ void add_send_options(Tool& tool, SendOptions& o) {
   app.add_option("--log", j.log_path, "Write every line sent and received, with timestamps, to this file")
       ->type_name("FILE")->group(progress);
   add_pause_options(tool, o.pause, false);
+}
+
+// --resume [JOURNAL] [FILE]: the one value after --resume is the journal
+// when it ends in .journal, else the file.
+void resolve_resume(const CLI::App& app, SendOptions& o) {
+  serial::SendJob& j = o.job;
+  j.resume = app.count("--resume") > 0;
+  if (!j.resume) return;
+  if (serial::is_virtual_port(j.port))
+    throw UsageError("--resume needs the port of the printer that went on printing (a device, or gc-virtual-printer's "
+                     "pty): the built-in virtual printer ended with the gc-send that ran it");
+  if (o.no_journal) throw UsageError("--resume reads a journal: not with --no-journal");
+  std::string value = o.resume;
+  if (!value.empty() && !value.ends_with(".journal")) {
+    if (!j.file.empty()) throw UsageError("--resume: '" + value + "' is not a journal (its name ends in .journal)");
+    j.file = value;
+    value.clear();
+  }
+  if (!value.empty()) {
+    if (!o.journal.empty() && o.journal != value) throw UsageError("--resume JOURNAL and --journal name two journals");
+    j.journal_path = value;
+  }
 }
 
 void resolve_send_options(Tool& tool, SendOptions& o) {
@@ -125,6 +152,7 @@ void resolve_send_options(Tool& tool, SendOptions& o) {
   j.control.pause = o.pause.config;
   j.control_path = o.no_control ? std::string() : !o.control.empty() ? o.control : serial::default_control_path(j.port);
   j.journal_path = o.no_journal ? std::string() : !o.journal.empty() ? o.journal : serial::default_journal_path(j.port);
+  resolve_resume(app, o);
   j.progress.mode = isatty(STDERR_FILENO) ? serial::ProgressMode::Live : serial::ProgressMode::Plain;
   j.progress.interval = o.interval;
   PauseOptions* pause = &o.pause;

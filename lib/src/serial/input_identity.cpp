@@ -28,6 +28,11 @@ PrefixHash::PrefixHash() : state_(XXH3_createState()) {
 
 PrefixHash::~PrefixHash() { XXH3_freeState(state_); }
 
+void PrefixHash::copy_from(const PrefixHash& other) {
+  XXH3_copyState(state_, other.state_);
+  bytes_ = other.bytes_;
+}
+
 void PrefixHash::update(std::string_view bytes) {
   XXH3_64bits_update(state_, bytes.data(), bytes.size());
   bytes_ += bytes.size();

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -18,6 +19,7 @@
 #include "gcode/serial/input_identity.hpp"
 #include "gcode/serial/port.hpp"
 #include "gcode/serial/send_journal.hpp"
+#include "gcode/serial/send_resume.hpp"
 #include "gcode/serial/send_session.hpp"
 #include "gcode/serial/virtual_link.hpp"
 
@@ -103,30 +105,29 @@ bool is_virtual_port(const std::string& port) {
   return port == kVirtual || port.rfind(std::string(kVirtual) + ":", 0) == 0;
 }
 
-int run_send_job(SendJob& job, Diagnostics& diag) {
-  InputFile input(job.file);
-  EventLoop loop;
-  // The journal first: one that cannot be kept stops the print before
-  // anything reaches the printer.
-  std::unique_ptr<SendJournal> journal;
-  if (!job.journal_path.empty())
-    journal = std::make_unique<SendJournal>(JournalOptions{.path = job.journal_path},
-                                            identify_input(input_name(job.file), input.fd()), job.port);
+namespace {
 
-  // The port: a real device or pty, or a socketpair to an in-process model.
-  int port_fd = -1;
+// The port: a real device or pty, or a socketpair to an in-process model.
+struct PortSetup {
+  int fd = -1;
+  int model_fd = -1;
   std::unique_ptr<VirtualPrinter> printer;
   std::unique_ptr<VirtualLink> link;
   std::FILE* vlog = nullptr;
-  int model_fd = -1;
-  double baud = job.baud;
+  double baud = 0;
   double scale = 1;
   bool pty = false;
-  if (is_virtual_port(job.port)) {
+
+  PortSetup(const SendJob& job, EventLoop& loop) : baud(job.baud) {
+    if (!is_virtual_port(job.port)) {
+      fd = open_serial_port(job.port, PortOptions{job.baud, job.reset});
+      pty = is_pseudo_terminal(fd);
+      return;
+    }
     int fds[2];
     if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, fds) != 0)
       throw std::runtime_error("cannot create the virtual printer's link");
-    port_fd = fds[0];
+    fd = fds[0];
     model_fd = fds[1];
     if (!job.vconfig.log_path.empty()) {
       vlog = std::fopen(job.vconfig.log_path.c_str(), "w");
@@ -136,26 +137,120 @@ int run_send_job(SendJob& job, Diagnostics& diag) {
     link = std::make_unique<VirtualLink>(loop, *printer, model_fd);
     baud = job.vconfig.baud;
     scale = job.vconfig.time_scale;
-  } else {
-    port_fd = open_serial_port(job.port, PortOptions{job.baud, job.reset});
-    pty = is_pseudo_terminal(port_fd);
   }
+  ~PortSetup() {
+    link.reset();
+    if (vlog != nullptr) std::fclose(vlog);
+    if (model_fd >= 0) ::close(model_fd);
+    if (fd >= 0) ::close(fd);
+  }
+  PortSetup(const PortSetup&) = delete;
+  PortSetup& operator=(const PortSetup&) = delete;
+};
 
+// The virtual printer's motion, for the pause's latency figures.
+void set_motion_probe(SendSession& session, PortSetup& port) {
+  VirtualPrinter* p = port.printer.get();
+  VirtualLink* l = port.link.get();
+  session.control()->set_probe(MotionProbe{[l] { return l->simulated_now(); },
+                                           [p](double t) { return p->travelled(t); }, [p](long long n) { p->watch(n); },
+                                           [p](double& end, double& queued) {
+                                             if (!p->watched().seen) return false;
+                                             end = p->watched().motion_end;
+                                             queued = p->watched().queued_length;
+                                             return true;
+                                           }});
+}
+
+// A file's layers are counted and its time estimated before it is sent (one
+// quick pass), so the progress can say "layer 12/40" and give an ETA.
+void count_layers(const std::string& file, SendSession& session, int e_relative) {
+  InputFile again(file);
+  struct stat st{};
+  if (::fstat(again.fd(), &st) != 0 || !S_ISREG(st.st_mode)) return;
+  Pipeline count(session.markers());
+  if (e_relative >= 0) count.set_e_mode(e_relative == 1);
+  LayerTimer timer(sender_estimator_options());
+  count.add(timer);
+  count.run(again.fd());
+  session.set_total_layers(count.tracker().layer_count());
+  session.set_estimated_time(timer.times().total());
+}
+
+// A journal left unfinished by a print that did not end (a killed gc-send,
+// a fault) is kept beside the new one, and the command that resumes it said.
+void keep_unfinished(const SendJob& job, Diagnostics& diag) {
+  struct stat st{};
+  if (::lstat(job.journal_path.c_str(), &st) != 0) return;
+  JournalContents old;
+  try {
+    old = read_journal(job.journal_path);
+  } catch (const JournalError&) {
+    return;  // not a journal this could resume: replaced
+  }
+  if (old.finished || old.entries.empty()) return;
+  std::string kept = job.journal_path;
+  if (kept.size() > 8 && kept.ends_with(".journal")) kept.resize(kept.size() - 8);
+  kept += ".unfinished.journal";
+  if (::rename(job.journal_path.c_str(), kept.c_str()) != 0) return;
+  diag.warn(0, fmt::format("the journal of an unfinished print ({}) is kept as {}; to go on with that print instead: {}",
+                           old.header.get("input"), kept, resume_command(kept, old.header.get("input"),
+                                                                          old.header.get("port"))));
+}
+
+int exit_status(const Sender& sender, const SendJob& job, const SendJournal* journal, const std::string& input) {
+  switch (sender.state()) {
+    case SenderState::Done: return 0;
+    case SenderState::Cancelled: return 130;
+    default:
+      std::fprintf(stderr, "gc-send: %s\n", sender.failure().c_str());
+      // The part is on the bed: say how to go on with it.
+      if (journal != nullptr && sender.last_acknowledged().number > 0)
+        std::fprintf(stderr, "gc-send: the journal holds the print; to go on with it: %s\n",
+                     resume_command(journal->writer().path(), input, job.port).c_str());
+      return 1;
+  }
+}
+
+}  // namespace
+
+int run_send_job(SendJob& job, Diagnostics& diag) {
+  std::optional<ResumeSource> resume;
+  if (job.resume) resume = open_resume(job.journal_path, job.file);
+  const std::string file = resume ? resume->resolved : job.file;
+  InputFile input(file);
+  const std::string name = input_name(file);
+  if (resume) check_resume_input(*resume, name, input.fd());
+  EventLoop loop;
+  // The journal before the port: one that cannot be kept stops the print
+  // before anything reaches the printer. A resume's replaces the old one
+  // once the printer has said where it is.
+  std::unique_ptr<SendJournal> journal;
+  if (!job.journal_path.empty() && !resume) {
+    keep_unfinished(job, diag);
+    journal = std::make_unique<SendJournal>(JournalOptions{.path = job.journal_path}, identify_input(name, input.fd()),
+                                            job.port);
+  }
+  PortSetup port(job, loop);
   SenderConfig config = job.sender;
   // A pseudo-terminal has no baud rate: its bytes cross at once, unless the
   // simulated printer behind it reports its own (M115 BAUD, TIME_SCALE).
-  config.link_bytes_per_second = pty ? 0 : baud / 10 * scale;
-  config.time_scale = scale;
+  config.link_bytes_per_second = port.pty ? 0 : port.baud / 10 * port.scale;
+  config.time_scale = port.scale;
+  if (resume) config.handshake = false;  // M110 N0 would lose the numbering the printer goes on with
   std::FILE* log = nullptr;
   if (!job.log_path.empty()) {
     log = std::fopen(job.log_path.c_str(), "w");
     if (log == nullptr) throw std::runtime_error(fmt::format("cannot write {}", job.log_path));
   }
   bool trace = job.verbose >= 2;
+  auto trace_line = [&](std::string_view message) {
+    if (log != nullptr) fmt::print(log, "{:.6f} {}\n", EventLoop::now(), message);
+    if (trace) std::fprintf(stderr, "gc-send: %.*s\n", static_cast<int>(message.size()), message.data());
+  };
   Sender sender(config, [&](LogLevel level, std::uint64_t input_line, std::string_view message) {
     if (level == LogLevel::Trace) {
-      if (log != nullptr) fmt::print(log, "{:.6f} {}\n", EventLoop::now(), message);
-      if (trace) std::fprintf(stderr, "gc-send: %.*s\n", static_cast<int>(message.size()), message.data());
+      trace_line(message);
     } else if (level == LogLevel::Warning) {
       diag.warn(input_line, message);
     } else {
@@ -163,64 +258,42 @@ int run_send_job(SendJob& job, Diagnostics& diag) {
     }
   });
   sender.set_trace(trace || log != nullptr);
-  SendSession session(loop, sender, input.fd(), port_fd, diag,
+  SendSession session(loop, sender, input.fd(), port.fd, diag,
                       job.layer_marker.empty() ? LayerMarkers() : LayerMarkers(job.layer_marker));
+  if (resume) {
+    ResumeStart start = begin_resume(*resume, port.fd, session, std::max(30.0, config.timeout), trace_line);
+    sender.continue_from(start.next, start.plan.state);
+    journal = std::make_unique<SendJournal>(JournalOptions{.path = job.journal_path}, identify_input(name, input.fd()),
+                                            job.port);
+    journal->continue_after(start.next - 1, start.point);
+    if (!job.quiet)
+      fmt::print(stderr,
+                 "gc-send: resuming: the printer kept running and took line {} last (input line {}, layer {}); on "
+                 "from input line {}\n",
+                 start.next - 1, start.plan.input_line, start.plan.layer, start.plan.input_line + 1);
+  }
   if (journal) session.set_journal(journal.get());
   PrintControlConfig control = job.control;
-  if (job.park) control.park = job.park(session.read_print_area(), control.pause);
-  int e_relative = session.read_e_mode(job.e_mode, input.name());
+  // (A resumed stream is past its header: the park goes by the options.)
+  if (job.park) control.park = job.park(resume && name == "-" ? PrintArea{} : session.read_print_area(), control.pause);
+  // A resume's E mode is the journal's state (Pipeline::start_from), and a
+  // stream is past its header.
+  int e_relative = resume ? -1 : session.read_e_mode(job.e_mode, input.name());
   session.set_control(control, job.control_path);
   ProgressOptions progress = job.progress;
   if (job.quiet) progress.mode = ProgressMode::Off;  // the status file is still kept
   session.set_progress(progress);
-  if (printer) {
-    VirtualPrinter* p = printer.get();
-    VirtualLink* l = link.get();
-    session.control()->set_probe(MotionProbe{
-        [l] { return l->simulated_now(); }, [p](double t) { return p->travelled(t); },
-        [p](long long n) { p->watch(n); },
-        [p](double& end, double& queued) {
-          if (!p->watched().seen) return false;
-          end = p->watched().motion_end;
-          queued = p->watched().queued_length;
-          return true;
-        }});
-  }
-  if (!job.file.empty() && job.file != "-" && !job.quiet) {
-    // A file's layers are counted and its time estimated before it is sent
-    // (one quick pass), so the progress can say "layer 12/40" and give an
-    // ETA from the estimator.
-    InputFile again(job.file);
-    struct stat st{};
-    if (::fstat(again.fd(), &st) == 0 && S_ISREG(st.st_mode)) {
-      Pipeline count(session.markers());
-      if (e_relative >= 0) count.set_e_mode(e_relative == 1);
-      LayerTimer timer(sender_estimator_options());
-      count.add(timer);
-      count.run(again.fd());
-      session.set_total_layers(count.tracker().layer_count());
-      session.set_estimated_time(timer.times().total());
-    }
-  }
+  if (port.printer) set_motion_probe(session, port);
+  if (!file.empty() && file != "-" && !job.quiet && !resume) count_layers(file, session, e_relative);
   if (session.fifo() != nullptr) diag.info(fmt::format("control FIFO: {}", session.fifo()->path()));
   session.run();
 
   if (journal && (sender.state() == SenderState::Done || sender.state() == SenderState::Cancelled))
     journal->finish(EventLoop::now());
-  if (!job.quiet) print_summary(sender, printer.get(), *session.control(), baud, scale, pty);
+  if (!job.quiet) print_summary(sender, port.printer.get(), *session.control(), port.baud, port.scale, port.pty);
   if (journal && !job.quiet) print_journal_summary(journal->writer());
-  if (vlog != nullptr) std::fclose(vlog);
   if (log != nullptr) std::fclose(log);
-  if (model_fd >= 0) ::close(model_fd);
-  ::close(port_fd);
-
-  switch (sender.state()) {
-    case SenderState::Done: return 0;
-    case SenderState::Cancelled: return 130;
-    default:
-      std::fprintf(stderr, "gc-send: %s\n", sender.failure().c_str());
-      return 1;
-  }
+  return exit_status(sender, job, journal.get(), name);
 }
 
 }  // namespace gcode::serial

@@ -11,9 +11,6 @@ namespace gcode::serial {
 
 namespace {
 
-// A checkpoint of the input's hash at least this often: a resume of a
-// re-run pipeline checks the bytes up to the newest one before its line.
-constexpr std::uint64_t kCheckpointBytes = 64 * 1024;
 // Input lines whose end offset is kept: more than the pipeline holds back
 // plus what a pause holds (their records are written when they are sent).
 constexpr std::size_t kEndsKept = 8192;
@@ -22,15 +19,20 @@ constexpr std::size_t kEndsKept = 8192;
 
 SendJournal::SendJournal(JournalOptions options, const InputIdentity& input, std::string_view port)
     : writer_(options, journal_header(input, port)), options_sync_(options.sync_interval) {
-  checkpoint_ = hash_text(hash_.digest());
+  checkpoint_ = hash_text(PrefixHash().digest());
 }
 
-void SendJournal::fed(std::string_view bytes) {
-  hash_.update(bytes);
-  if (hash_.bytes() - checkpoint_at_ >= kCheckpointBytes) {
-    checkpoint_at_ = hash_.bytes();
-    checkpoint_ = hash_text(hash_.digest());
-  }
+void SendJournal::checkpoint(std::uint64_t bytes, std::uint64_t hash) {
+  checkpoint_at_ = bytes;
+  checkpoint_ = hash_text(hash);
+}
+
+void SendJournal::continue_after(long long n, const JournalFields& point) {
+  point_ = point;
+  last_line_ = std::stoull(point.get("line", "0"));
+  last_off_ = std::stoull(point.get("off", "0"));
+  writer_.sent(static_cast<std::uint64_t>(n), point_);
+  acked_ = n;
 }
 
 void SendJournal::line_end(std::uint64_t line, std::uint64_t end) {
@@ -39,11 +41,7 @@ void SendJournal::line_end(std::uint64_t line, std::uint64_t end) {
   if (ends_.size() > kEndsKept) ends_.pop_front();
 }
 
-void SendJournal::layer_began() {
-  checkpoint_at_ = hash_.bytes();
-  checkpoint_ = hash_text(hash_.digest());
-  writer_.sync_soon();
-}
+void SendJournal::layer_began() { writer_.sync_soon(); }
 
 std::uint64_t SendJournal::offset_of(std::uint64_t line) const {
   auto it = std::lower_bound(ends_.begin(), ends_.end(), line,

@@ -24,6 +24,9 @@ namespace {
 
 constexpr std::size_t kReadSize = 65536;   // bytes read from the input at once
 constexpr std::size_t kLowWater = 16384;   // read more when less is buffered
+// A checkpoint of the input's hash in the journal at least this often: a
+// resume of a re-run pipeline checks the bytes up to one before its line.
+constexpr std::uint64_t kCheckpointBytes = 64 * 1024;
 
 }  // namespace
 
@@ -153,39 +156,78 @@ void SendSession::set_journal(SendJournal* journal) {
                   });
 }
 
+void SendSession::hash_fed(std::string_view bytes) {
+  input_hash_.update(bytes);
+  if (input_hash_.bytes() - checkpointed_ >= kCheckpointBytes) {
+    checkpointed_ = input_hash_.bytes();
+    journal_->checkpoint(checkpointed_, input_hash_.digest());
+  }
+}
+
 void SendSession::skip_printed(std::uint64_t bytes, std::uint64_t hash_bytes, std::uint64_t lines, int layer,
                                const MachineState& state) {
-  PrefixHash hash;
-  std::uint64_t done = 0;
-  const std::uint64_t need = std::max(bytes, hash_bytes);
+  skipped_hash_ = 0;
   std::string block(kReadSize, '\0');
+  const std::uint64_t need = std::max(bytes, hash_bytes);
+  std::uint64_t done = 0;
   while (done < need) {
     ssize_t n = ::read(input_fd_, block.data(), block.size());
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) throw std::runtime_error(fmt::format("cannot read the input: {}", std::strerror(errno)));
     if (n == 0) break;
     std::string_view got(block.data(), static_cast<std::size_t>(n));
-    if (done < hash_bytes) hash.update(got.substr(0, static_cast<std::size_t>(std::min<std::uint64_t>(hash_bytes - done, got.size()))));
     if (done < bytes) {
-      std::string_view printed = got.substr(0, static_cast<std::size_t>(std::min<std::uint64_t>(bytes - done, got.size())));
-      if (journal_ != nullptr) journal_->fed(printed);
-      got.remove_prefix(printed.size());
+      // The printed part: hashed as if it had been fed, not fed; the check's
+      // digest taken where the journal's checkpoint is.
+      auto printed = static_cast<std::size_t>(std::min<std::uint64_t>(bytes - done, got.size()));
+      std::string_view part = got.substr(0, printed);
+      std::uint64_t at = input_hash_.bytes();
+      if (hash_bytes > at && hash_bytes <= at + part.size()) {
+        auto head = static_cast<std::size_t>(hash_bytes - at);
+        input_hash_.update(part.substr(0, head));
+        skipped_hash_ = input_hash_.digest();
+        part.remove_prefix(head);
+      }
+      input_hash_.update(part);
+      got.remove_prefix(printed);
     }
     in_buf_.append(got);
     done += static_cast<std::uint64_t>(n);
   }
-  skipped_hash_ = done >= hash_bytes ? hash.digest() : 0;
-  skipped_bytes_ = std::min(done, bytes);
-  input_bytes_ = byte_base_ = skipped_bytes_;
+  if (hash_bytes == 0) skipped_hash_ = PrefixHash().digest();
+  if (hash_bytes > input_hash_.bytes() && done >= hash_bytes) {
+    // The checkpoint lies a little past the printed part: the check hashes
+    // on into what is to be fed, on a copy.
+    PrefixHash check;
+    check.copy_from(input_hash_);
+    check.update(std::string_view(in_buf_).substr(0, static_cast<std::size_t>(hash_bytes - input_hash_.bytes())));
+    skipped_hash_ = check.digest();
+  }
+  skipped_bytes_ = input_hash_.bytes();
+  checkpointed_ = skipped_bytes_;
+  input_bytes_ = skipped_bytes_;
   line_base_ = lines;
   layer_base_ = layer;
   pipeline_.start_from(state);
+}
+
+// What read_print_area read of a stream into the pipeline goes to the
+// printer with the first line fed: its bytes and lines count as fed.
+void SendSession::count_header() {
+  std::string_view head = pipeline_.buffered();
+  if (journal_ != nullptr) hash_fed(head);
+  for (std::size_t pos = 0, nl; (nl = head.find('\n', pos)) != std::string_view::npos; pos = nl + 1) {
+    ++fed_lines_;
+    if (journal_ != nullptr) journal_->line_end(line_base_ + fed_lines_, input_bytes_ + nl + 1);
+  }
+  input_bytes_ += head.size();
 }
 
 void SendSession::run() {
   if (!control_) set_control(PrintControlConfig{}, std::string());
   control_->add_stages(pipeline_);
   pipeline_.add(*this);
+  count_header();
   input_watch_ = loop_.add_fd(input_fd_, POLLIN, [this](short) { read_input(); });
   started_ = EventLoop::now();
   if (progress_) {
@@ -205,7 +247,10 @@ void SendSession::line(const TrackedLine& t, Emitter&) {
 
 void SendSession::layer(const LayerInfo& info, const MachineState& before, Emitter&) {
   if (current_ != nullptr) return;
-  if (journal_ != nullptr) journal_->layer_began();
+  if (journal_ != nullptr) {
+    journal_->checkpoint(input_hash_.bytes(), input_hash_.digest());
+    journal_->layer_began();
+  }
   LayerInfo shifted = info;
   shifted.index += layer_base_;
   shifted.first_line += line_base_;
@@ -308,7 +353,7 @@ void SendSession::feed_input() {
       if (in_pos_ < in_buf_.size()) {
         // A last line without a newline.
         if (journal_ != nullptr) {
-          journal_->fed(std::string_view(in_buf_).substr(in_pos_));
+          hash_fed(std::string_view(in_buf_).substr(in_pos_));
           journal_->line_end(line_base_ + ++fed_lines_, in_buf_.size() - in_pos_ + input_bytes_);
         }
         pipeline_.feed(std::string_view(in_buf_).substr(in_pos_));
@@ -325,7 +370,7 @@ void SendSession::feed_input() {
     // known before the line can reach the sender.
     ++fed_lines_;
     if (journal_ != nullptr) {
-      journal_->fed(fed);
+      hash_fed(fed);
       journal_->line_end(line_base_ + fed_lines_, input_bytes_ + fed.size());
     }
     pipeline_.feed(fed);

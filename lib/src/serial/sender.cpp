@@ -38,6 +38,11 @@ void Sender::start(double now) {
     // Unnumbered: Marlin only checks numbers on lines that start with N, and
     // M110 N0 makes the next numbered line N1.
     send_unnumbered("M110 N0", false, false);
+  } else if (continuing_) {
+    // A resume: the numbering stays, the capabilities (and a simulated
+    // printer's time scale) are asked again.
+    state_ = SenderState::Capabilities;
+    send_unnumbered("M115", false, false);
   } else {
     state_ = SenderState::Printing;
     fill(now);
@@ -49,6 +54,7 @@ void Sender::continue_from(long long next, const MachineState& printer) {
   highest_sent_ = next - 1;
   last_acked_.number = next - 1;
   machine_ = printer;
+  continuing_ = true;
 }
 
 void Sender::grow_ring() {

@@ -24,6 +24,7 @@ struct SendOptions {
   bool no_control = false;
   std::string journal;      // --journal PATH
   bool no_journal = false;
+  std::string resume;       // --resume [JOURNAL]
   std::string pause_on;     // M0,M1,...
   std::string cancel_gcode;
   bool no_pace = false;

@@ -29,6 +29,9 @@ class PrefixHash {
   PrefixHash(const PrefixHash&) = delete;
   PrefixHash& operator=(const PrefixHash&) = delete;
 
+  // Takes over `other`'s state: the hash of a prefix, to hash on past it
+  // without changing `other`.
+  void copy_from(const PrefixHash& other);
   void update(std::string_view bytes);
   std::uint64_t digest() const;
   std::uint64_t bytes() const { return bytes_; }

@@ -2,9 +2,8 @@
 // gc-send's journal while it prints: what the session and the sender tell it,
 // turned into journal records (journal.hpp). The sender's numbering hook
 // gives each command's number, input line, layer and the machine state after
-// it; the session says where each input line ends (its byte offset), what
-// the input's bytes hash to (checkpoints for a re-run pipeline), when a layer
-// begins (a sync) and what the control changed live (speed, pause state, a
+// it; the session says where each input line ends (its byte offset), when a layer
+// begins (a sync), checkpoints of the hash of the input fed, and what the control changed live (speed, pause state, a
 // swapped-in file). Acknowledgements are written once per turn of the loop,
 // the newest only: one `A` record a turn instead of one per `ok`.
 #include <cstdint>
@@ -33,8 +32,12 @@ class SendJournal {
  public:
   SendJournal(JournalOptions options, const InputIdentity& input, std::string_view port);
 
-  // The input's bytes as they are fed (hashed; a checkpoint every so often).
-  void fed(std::string_view bytes);
+  // The hash of the input's first `bytes` (a checkpoint; the session hashes
+  // what it feeds): the records from now on carry it.
+  void checkpoint(std::uint64_t bytes, std::uint64_t hash);
+  // A resume: the journal goes on from the command that ran last (`n`,
+  // with its point as the old journal held it).
+  void continue_after(long long n, const JournalFields& point);
   // Input line `line` ends at byte `end` (called as it reaches the control).
   void line_end(std::uint64_t line, std::uint64_t end);
   void layer_began();
@@ -55,7 +58,6 @@ class SendJournal {
 
   JournalWriter writer_;
   double options_sync_;
-  PrefixHash hash_;
   std::uint64_t checkpoint_at_ = 0;  // bytes hashed at the newest checkpoint
   std::string checkpoint_;           // its digest
   std::deque<std::pair<std::uint64_t, std::uint64_t>> ends_;  // (input line, end offset), oldest first

@@ -97,6 +97,8 @@ class SendSession : private Stage {
   void start_swap(std::unique_ptr<JoinStream> next, int layers_done);
   bool feed_segment();
   void read_input();
+  void hash_fed(std::string_view bytes);
+  void count_header();
   void feed_input();
   void read_port();
   void flush_port();
@@ -145,9 +147,10 @@ class SendSession : private Stage {
   double journal_due_ = 0;         // the journal's next timed flush
   std::uint64_t line_base_ = 0;    // a resume: input lines before the first one fed
   int layer_base_ = 0;             // ... and layers printed before it
-  std::uint64_t byte_base_ = 0;    // ... and bytes
   std::uint64_t skipped_hash_ = 0;
   std::uint64_t skipped_bytes_ = 0;
+  PrefixHash input_hash_;            // the input's bytes fed (or printed before a resume)
+  std::uint64_t checkpointed_ = 0;  // bytes of the journal's newest checkpoint
   std::uint64_t fed_lines_ = 0;     // input lines fed to the pipeline (a resume's not counted)
 };
 

@@ -148,7 +148,8 @@ class Sender : private TimeSink {
   }
   // A resume (gc-send --resume): the printer kept running and expects line
   // `next` now, standing as `printer` says. Before start(), with the
-  // handshake off: M110 N0 would throw away the numbering it goes on with.
+  // handshake off: M110 N0 would throw away the numbering it goes on with
+  // (M115 is still asked).
   void continue_from(long long next, const MachineState& printer);
   // Nothing waits to be sent and nothing is in flight.
   bool idle() const { return pending() == 0 && flight_.empty() && output().empty(); }
@@ -273,6 +274,7 @@ class Sender : private TimeSink {
   bool emergency_ = false;
   bool paused_ = false;         // //action:pause until //action:resume
   bool caps_answered_ = false;
+  bool continuing_ = false;     // continue_from(): a resume's numbering
   bool idle_hint_ = false;      // the printer said "wait" (idle) with lines in flight
   ProbeBackoff probes_;
   int learnt_planner_ = 0;      // planner blocks seen in ADVANCED_OK's P

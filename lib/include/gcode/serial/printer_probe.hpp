@@ -1,0 +1,29 @@
+#pragma once
+// Before a resume sends anything of the print (gc-send --resume), ask the
+// printer what it did with the lines it took (resume_plan.hpp): the line it
+// expects next, from its answer to a line sent with a deliberately wrong
+// number ("Error:Line Number is not Last Line Number+1, Last Line: 1234"),
+// where it stands (M114), and whether it greeted (reset) meanwhile. Neither
+// question moves the printer: a refused line is not run, M105 and M114 only
+// report. A blocking exchange on the port before the event loop starts.
+#include <functional>
+#include <string>
+#include <string_view>
+
+#include "gcode/serial/resume_plan.hpp"
+
+namespace gcode::serial {
+
+struct ProbeResult {
+  PrinterFindings findings;
+  bool answered = false;      // it named the line it took last
+  long long last_line = -1;   // that line (0: its numbering is back at the start)
+  bool greeted = false;       // it said "start" (it reset)
+  std::string problem;        // why the printer cannot be trusted ("" none)
+};
+
+// `timeout`: seconds for each answer (a printer draining a full queue of
+// slow moves answers late). `trace` sees every line both ways.
+ProbeResult probe_printer(int fd, double timeout, const std::function<void(std::string_view)>& trace);
+
+}  // namespace gcode::serial

@@ -1,0 +1,52 @@
+#pragma once
+// gc-send --resume: the print a journal holds goes on (issue 22, §4). Before
+// the port is opened, the journal is read and the input checked against it
+// (open_resume); once connected, the printer is asked where it is, the
+// resume planned and the printed part of the input read and checked
+// (begin_resume); then the session goes on from the next line exactly.
+// Every refusal is a ResumeError with the reason, before anything of the
+// print is sent.
+#include <cstdint>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "gcode/serial/journal.hpp"
+#include "gcode/serial/resume_plan.hpp"
+
+namespace gcode::serial {
+
+class SendSession;
+
+class ResumeError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The old journal, read back and checked: not finished, with commands in it.
+// `file`: the input as given ("" = the journal's own file, or standard
+// input for a journal of a stream), resolved into `resolved`.
+struct ResumeSource {
+  JournalContents journal;
+  std::string resolved;
+};
+ResumeSource open_resume(const std::string& journal_path, const std::string& file);
+// The input opened as `fd` (named `name`, absolute) is the journal's input.
+void check_resume_input(const ResumeSource& source, const std::string& name, int fd);
+
+struct ResumeStart {
+  ResumePlan plan;
+  long long next = 0;      // the protocol line the printer expects next
+  JournalFields point;     // the journal's record of the line before it
+};
+
+// Asks the printer on `port_fd`, plans, and skips the printed part of the
+// input in `session` (its hash checked). `timeout`: seconds for each answer.
+ResumeStart begin_resume(const ResumeSource& source, int port_fd, SendSession& session, double timeout,
+                         const std::function<void(std::string_view)>& trace);
+
+// The one command that resumes a print that stopped with the part on the bed.
+std::string resume_command(const std::string& journal, const std::string& input, const std::string& port);
+
+}  // namespace gcode::serial

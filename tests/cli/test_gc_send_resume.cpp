@@ -1,0 +1,162 @@
+// gc-send --resume after gc-send was killed (SIGKILL) while gc-virtual-printer
+// went on printing on its pty: the printer's executed log, across both
+// sessions, holds every command of the input once and in order (a file, the
+// journal and the file found by default, and a pipeline re-run the same
+// way); and every bad start is refused with its reason, exit 1, before any
+// line of the print is sent.
+#include <catch2/catch.hpp>
+
+#include <sys/stat.h>
+
+#include <string>
+
+#include "serial_check.hpp"
+#include "test_support.hpp"
+
+using gctest::quote;
+using gctest::run;
+using gctest::tool_path;
+
+namespace {
+
+// 3000 commands of a real print in pieces of at most 0.5 mm.
+std::string subdivided_part(const std::string& dir) {
+  std::string path = dir + "/part.gcode";
+  auto r = run(quote(tool_path("gc-subdivide")) + " --max 0.5 " +
+               quote(gctest::fixture_path("prusa_cube_0.2_mk3s_rel_zhop.gcode")) + " | head -n 3000 > " + quote(path));
+  REQUIRE(r.status == 0);
+  return path;
+}
+
+// A shell script's start: the printer on a pty at `dir`/printer, its log
+// `dir`/executed.log; `$vp` its process.
+std::string printer_up(const std::string& dir) {
+  std::string link = dir + "/printer";
+  return quote(tool_path("gc-virtual-printer")) + " -q --time-scale 20 --link " + quote(link) + " --log " +
+         quote(dir + "/executed.log") + " & vp=$!\nfor i in $(seq 500); do [ -e " + quote(link) +
+         " ] && break; sleep 0.01; done\n";
+}
+
+std::string gc_send(const std::string& args) { return quote(tool_path("gc-send")) + " " + args; }
+
+// gc-send started with `args` and killed with SIGKILL after `seconds`.
+std::string killed_after(const std::string& args, double seconds) {
+  return gc_send(args) + " 2>/dev/null & gs=$!\nsleep " + std::to_string(seconds) +
+         "\nkill -9 $gs; wait $gs 2>/dev/null\n";
+}
+
+void require_every_command_once(const std::string& dir, const std::string& input) {
+  auto executed = gctest::parse_executed_log(gctest::read_file(dir + "/executed.log"));
+  auto expected = gctest::commands_of(gctest::read_file(input));
+  REQUIRE(executed.commands.size() == expected.size() + 1);  // and the resumed run's M400
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    INFO("command " << i);
+    REQUIRE(executed.commands[i] == expected[i].text);
+    REQUIRE(executed.numbers[i] == static_cast<long long>(i + 1));
+  }
+  CHECK(executed.commands.back() == "M400");
+}
+
+}  // namespace
+
+TEST_CASE("gc-send --resume after kill -9: every command of the file once, in order", "[gc-send][resume]") {
+  std::string dir = gctest::temp_dir();
+  std::string input = subdivided_part(dir);
+  std::string port = dir + "/printer";
+  std::string journal = dir + "/print.journal";
+  std::string script = printer_up(dir) +
+                       killed_after("-q --port " + quote(port) + " --journal " + quote(journal) + " " + quote(input), 2) +
+                       gc_send("--port " + quote(port) + " --resume " + quote(journal) + " " + quote(input)) +
+                       "; s=$?; kill $vp; wait $vp; exit $s";
+  auto r = run(script);
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.err.find("resuming: the printer kept running and took line ") != std::string::npos);
+  require_every_command_once(dir, input);
+}
+
+TEST_CASE("gc-send --resume with the default journal and the journal's file; and a pipeline re-run",
+          "[gc-send][resume]") {
+  std::string dir = gctest::temp_dir();
+  std::string input = subdivided_part(dir);
+  std::string port = dir + "/printer";
+  std::string env = "XDG_STATE_HOME=" + quote(dir + "/state") + " ";
+  SECTION("a file: --resume alone finds the port's journal and the file it names") {
+    std::string script = printer_up(dir) + "cd /\n" + env +
+                         killed_after("-q --port " + quote(port) + " " + quote(input), 2) + env +
+                         gc_send("--port " + quote(port) + " --resume") + "; s=$?; kill $vp; wait $vp; exit $s";
+    auto r = run(script);
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    require_every_command_once(dir, input);
+  }
+  SECTION("a pipeline: its bytes up to the resume hash as before") {
+    std::string cat = "cat " + quote(input) + " | ";
+    std::string script = printer_up(dir) + cat + env + killed_after("-q --port " + quote(port), 2) + cat + env +
+                         gc_send("--port " + quote(port) + " --resume -") + "; s=$?; kill $vp; wait $vp; exit $s";
+    auto r = run(script);
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    require_every_command_once(dir, input);
+  }
+}
+
+TEST_CASE("gc-send --resume refuses, exit 1, nothing sent: another file, a corrupt, finished or missing journal, "
+          "an open folder, a printer that moved",
+          "[gc-send][resume]") {
+  std::string dir = gctest::temp_dir();
+  std::string input = subdivided_part(dir);
+  std::string other = dir + "/other.gcode";
+  gctest::write_file(other, gctest::read_file(input) + "G1 X1\n");
+  std::string port = dir + "/printer";
+  std::string journal = dir + "/print.journal";
+  std::string open_dir = dir + "/open";
+  REQUIRE(::mkdir(open_dir.c_str(), 0777) == 0);
+  REQUIRE(::chmod(open_dir.c_str(), 0777) == 0);
+  // A finished journal: a whole print on the built-in printer.
+  REQUIRE(run(gc_send("-q --port virtual:time-scale=100 --journal " + quote(dir + "/done.journal")),
+              "G28\nG1 X5 F6000\n").status == 0);
+  // The numbered lines the printer executed (M114 and the like are not).
+  std::string numbered = "awk -F'\\t' '$2 >= 0' " + quote(dir + "/executed.log") + " | wc -l";
+  auto resume = [&](const std::string& name, const std::string& args) {
+    return gc_send("-q --port " + quote(port) + " --resume " + args) + " 2> " + quote(dir + "/err-" + name) + "; echo $? >> " +
+           quote(dir + "/err-" + name) + "\n";
+  };
+  std::string script =
+      printer_up(dir) + killed_after("-q --port " + quote(port) + " --journal " + quote(journal) + " " + quote(input), 2) +
+      "sleep 2\n"  // the printer has run everything it took
+      "n=$(" + numbered + ")\n"
+      "sed '5s/ n=/ n=9/' " + quote(journal) + " > " + quote(dir + "/corrupt.journal") + "\n"
+      "cp " + quote(journal) + " " + quote(open_dir + "/open.journal") + "\n" +
+      resume("other", quote(journal) + " " + quote(other)) +
+      resume("corrupt", quote(dir + "/corrupt.journal") + " " + quote(input)) +
+      resume("finished", quote(dir + "/done.journal") + " " + quote(input)) +
+      resume("missing", quote(dir + "/none.journal") + " " + quote(input)) +
+      resume("open", quote(open_dir + "/open.journal") + " " + quote(input)) +
+      "[ $(" + numbered + ") = $n ] || echo sent-something\n"
+      // Someone moved the printer meanwhile (an unnumbered line on its pty).
+      "printf 'G91\\nG1 Z0.5 F600\\nG90\\n' > " + quote(port) + "\nsleep 0.5\n"
+      "n=$(" + numbered + ")\n" +
+      resume("moved", quote(journal) + " " + quote(input)) +
+      "[ $(" + numbered + ") = $n ] || echo sent-something\n"
+      "kill $vp; wait $vp\n";
+  auto r = run(script);
+  INFO(r.out << r.err);
+  CHECK(r.out.find("sent-something") == std::string::npos);
+  auto refused = [&](const std::string& name, const std::string& message) {
+    std::string err = gctest::read_file(dir + "/err-" + name);
+    INFO(name << ": " << err);
+    CHECK(err.find(message) != std::string::npos);
+    CHECK(err.substr(err.size() - 2) == "1\n");
+  };
+  refused("other", "cannot resume: the journal is of " + input + ", not " + other);
+  refused("corrupt", "is corrupt: line 5 is damaged and good records follow it");
+  refused("finished", "ended normally (nothing to resume)");
+  refused("missing", "no journal at " + dir + "/none.journal");
+  refused("open", "journal refused: its folder " + open_dir + " can be changed by others");
+  refused("moved", "the printer is at Z ");
+  // Usage: the built-in virtual printer ended with the gc-send that ran it.
+  auto u = run(gc_send("--port virtual --resume " + quote(journal)));
+  CHECK(u.status == 2);
+  CHECK(u.err.find("--resume needs the port of the printer") != std::string::npos);
+}
