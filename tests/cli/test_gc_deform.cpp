@@ -150,6 +150,23 @@ TEST_CASE("gc-deform refuses what cannot print, with the line; -i leaves the fil
   CHECK(forced.status == 0);
 }
 
+TEST_CASE("gc-deform: moves in inches (G20) in the layers pass under the identity, are refused when bent, pass with --force",
+          "[gc-deform][errors]") {
+  const std::string inches =
+      "G21\nG90\nM82\n;LAYER:0\nG1 Z0.2 F600\nG1 X10 Y10 E0.5 F1200\nG20\nG1 X1 Y1 E0.6\nG21\nG1 X30 Y30 E1\n";
+  auto same = run(tool_command("gc-deform", "--xyz x y z -"), inches);
+  CHECK(same.status == 0);
+  CHECK((same.out == inches));
+  auto bent = run(tool_command("gc-deform", "--xyz 'x + 1' y z -"), inches);
+  CHECK(bent.status == 1);
+  CHECK(bent.err.find("line 8: the layers move in inches (G20)") != std::string::npos);
+  auto forced = run(tool_command("gc-deform", "--force --xyz 'x + 1' y z -"), inches);
+  INFO(forced.err);
+  CHECK(forced.status == 0);
+  CHECK(forced.out.find("\nG20\nG1 X1 Y1 E0.6\n") != std::string::npos);  // as it was
+  CHECK(forced.out.find("X11") != std::string::npos);                      // the mm moves are bent
+}
+
 TEST_CASE("gc-deform: bad formulas and options are usage errors naming the formula and the position", "[gc-deform][errors]") {
   struct Bad {
     const char* args;

@@ -109,7 +109,7 @@ int main(int argc, char** argv) {
   app.add_option("--filament-diameter", o.filament_diameter, "For --max-flow (default: the file's, else 1.75)")
       ->type_name("MM")->check(gcode::cli::positive());
   app.add_option("--bed", o.bed, "The bed, from 0,0 (default: the slicer's SLIC3R_* or the file's)")->type_name("WxD");
-  app.add_flag("--force", o.deform.force, "Print what dives into the part or jumps (never what leaves the bed)");
+  app.add_flag("--force", o.deform.force, "Print what dives into the part or jumps (never what leaves the bed); pass moves in inches unchanged");
 
   tool.check([&] {
     if (o.xyz.empty() && o.cylinder.empty()) throw UsageError("give the deformation: --xyz FX FY FZ or --cylinder FR FTHETA FZ");

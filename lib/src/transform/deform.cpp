@@ -80,6 +80,9 @@ void Deformer::line(const TrackedLine& t, Emitter& out) {
   const bool motion = (m.kind == MoveKind::Linear || m.kind == MoveKind::Arc) && !m.ignored && !t.line.malformed;
   const double s = path_;
   path_ += m.length;
+  if (motion && t.region == Region::Layer && t.state.inches && !options_.force && !leaves_alone(t, s))
+    refuse(t.raw.number, "the layers move in inches (G20), which gc-deform does not bend (convert the file to "
+                         "millimetres; --force passes these moves unchanged)");
   if (!motion || t.region != Region::Layer || t.state.inches || t.line.has_line_number || t.line.has_checksum ||
       !(m.length > 0) || !plan(t, s)) {
     // A move of the layers that goes nowhere ("G1 Z0.6" where Z is 0.6) stays where the output is.
@@ -99,6 +102,15 @@ void Deformer::line(const TrackedLine& t, Emitter& out) {
     return;
   }
   write(t, out);
+}
+
+// An inch move is passed as it is; that is right only where the map leaves
+// its end, its cross-section and its speed alone (the identity on a G20 file).
+bool Deformer::leaves_alone(const TrackedLine& t, double s) {
+  const Point3 end{t.move.end[kX], t.move.end[kY], t.move.end[kZ]};
+  map_.set_context(t.layer, s + t.move.length);
+  return distance(map_.apply(end), end) <= kSame && std::fabs(map_.section(end) - 1) <= kSame &&
+         std::fabs(map_.speed(end) - 1) <= kSame;
 }
 
 Point3 Deformer::on_move(double t) const {

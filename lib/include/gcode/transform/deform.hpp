@@ -39,7 +39,9 @@
 // the last one ended), and always a point off the bed (below Z 0 by more
 // than the tolerance, outside the bed, where the input was on it, or above
 // its height, when they are known) or an
-// image or factor that is not a finite number.
+// image or factor that is not a finite number. Moves of the layers in
+// inches (G20) are passed unchanged where the map leaves them alone (the
+// identity) and refused elsewhere, unless `force` passes them unchanged.
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -105,6 +107,7 @@ class Deformer : public Stage {
   Point3 image_at(double t);
   void cut(double t0, const Point3& a, double t1, const Point3& b, int depth);
   bool plan(const TrackedLine& t, double path_before);
+  bool leaves_alone(const TrackedLine& t, double path_before);
   bool in_step(const TrackedLine& t) const;
   bool in_step_outside(const TrackedLine& t) const;
   void write(const TrackedLine& t, Emitter& out);
