@@ -2,14 +2,16 @@
 // went on printing on its pty: the printer's executed log, across both
 // sessions, holds every command of the input once and in order (a file, the
 // journal and the file found by default, and a pipeline re-run the same
-// way); and every bad start is refused with its reason, exit 1, before any
+// way, and killed again and again at seeded random moments); and every bad start is refused with its reason, exit 1, before any
 // line of the print is sent.
 #include <catch2/catch.hpp>
 
 #include <sys/stat.h>
 
+#include <random>
 #include <string>
 
+#include "gcode/serial/journal.hpp"
 #include "serial_check.hpp"
 #include "test_support.hpp"
 
@@ -159,4 +161,41 @@ TEST_CASE("gc-send --resume refuses, exit 1, nothing sent: another file, a corru
   auto u = run(gc_send("--port virtual --resume " + quote(journal)));
   CHECK(u.status == 2);
   CHECK(u.err.find("--resume needs the port of the printer") != std::string::npos);
+}
+
+TEST_CASE("gc-send killed with SIGKILL at random moments, resumed each time: the journal reads back every time and "
+          "the printer ran every command once, in order",
+          "[gc-send][resume]") {
+  std::string dir = gctest::temp_dir();
+  std::string input = subdivided_part(dir);
+  std::string port = dir + "/printer";
+  std::string journal = dir + "/print.journal";
+  std::string pid_file = dir + "/printer.pid";
+  std::string link = quote(port);
+  REQUIRE(run(quote(tool_path("gc-virtual-printer")) + " -q --time-scale 20 --link " + link + " --log " +
+              quote(dir + "/executed.log") + " >/dev/null 2>&1 & echo $! > " + quote(pid_file) +
+              "\nfor i in $(seq 500); do [ -e " + link + " ] && break; sleep 0.01; done")
+              .status == 0);
+  std::mt19937 rng(22);  // seeded: the same moments on every run
+  std::uniform_real_distribution<double> moment(0.5, 1.2);
+  std::string first = "-q --port " + link + " --journal " + quote(journal) + " " + quote(input);
+  std::string again = "-q --port " + link + " --resume " + quote(journal) + " " + quote(input);
+  bool finished = false;
+  for (int kill = 0; kill < 4 && !finished; ++kill) {
+    double at = moment(rng);
+    INFO("kill " << kill << " after " << at << " s");
+    run(killed_after(kill == 0 ? first : again, at));
+    gcode::serial::JournalContents c;
+    REQUIRE_NOTHROW(c = gcode::serial::read_journal(journal));
+    REQUIRE_FALSE(c.entries.empty());
+    finished = c.finished;  // that run got to the end first
+  }
+  if (!finished) {
+    auto r = run(gc_send(again));
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+  }
+  run("kill $(cat " + quote(pid_file) + ")");
+  CHECK(gcode::serial::read_journal(journal).finished);
+  require_every_command_once(dir, input);
 }
