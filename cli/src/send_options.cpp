@@ -52,7 +52,8 @@ void add_send_options(Tool& tool, SendOptions& o) {
   app.add_flag("--no-control", o.no_control, "No control FIFO")->group(control)->excludes("--control");
   app.add_option("--journal", o.journal,
                  "Journal of what was sent, for a resume after a fault (default $XDG_STATE_HOME/gc-send/PORT.journal, "
-                 "else ~/.local/state/gc-send/PORT.journal); made 0600, refused in a folder others can write")
+                 "else ~/.local/state/gc-send/PORT.journal; none for the built-in virtual printer, which ends with "
+                 "gc-send); made 0600, refused in a folder others can write")
       ->type_name("PATH")->group(control);
   app.add_flag("--no-journal", o.no_journal, "Keep no journal")->group(control)->excludes("--journal");
   app.add_option("--resume", o.resume,
@@ -151,7 +152,10 @@ void resolve_send_options(Tool& tool, SendOptions& o) {
   resolve_pause_options(o.pause);
   j.control.pause = o.pause.config;
   j.control_path = o.no_control ? std::string() : !o.control.empty() ? o.control : serial::default_control_path(j.port);
-  j.journal_path = o.no_journal ? std::string() : !o.journal.empty() ? o.journal : serial::default_journal_path(j.port);
+  // The built-in virtual printer ends with the gc-send that runs it: nothing
+  // could resume from its journal, and concurrent virtual prints would share one.
+  const bool keeps_journal = !o.no_journal && (!o.journal.empty() || !serial::is_virtual_port(j.port));
+  j.journal_path = !keeps_journal ? std::string() : !o.journal.empty() ? o.journal : serial::default_journal_path(j.port);
   resolve_resume(app, o);
   j.progress.mode = isatty(STDERR_FILENO) ? serial::ProgressMode::Live : serial::ProgressMode::Plain;
   j.progress.interval = o.interval;

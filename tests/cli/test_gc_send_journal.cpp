@@ -91,15 +91,20 @@ TEST_CASE("gc-send journal: the default path, --no-journal, and a folder others 
   std::string input = "G28\nG1 X10 Y10 F6000\n";
   std::string env = "XDG_STATE_HOME=" + quote(state) + " ";
 
+  // The built-in virtual printer ends with gc-send: no journal unless asked for.
   auto r = run("cat | " + env + send_command("-q --port virtual:time-scale=50"), input);
+  CHECK(r.status == 0);
+  struct stat st{};
+  CHECK(::stat(state.c_str(), &st) != 0);
+
+  std::string path = state + "/gc-send/virtual.journal";
+  r = run("cat | " + env + send_command("-q --port virtual:time-scale=50 --journal " + quote(path)), input);
   INFO(r.err);
   CHECK(r.status == 0);
-  std::string path = state + "/gc-send/virtual.journal";
   gcode::serial::JournalContents c = gcode::serial::read_journal(path);
   CHECK(c.finished);
   CHECK(c.header.get("input") == "-");
   CHECK(c.header.get("regular") == "0");
-  struct stat st{};
   REQUIRE(::stat((state + "/gc-send").c_str(), &st) == 0);
   CHECK((st.st_mode & 0777) == 0700);
 
