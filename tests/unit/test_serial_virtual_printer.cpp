@@ -114,6 +114,24 @@ TEST_CASE("virtual printer options parse, bad ones are rejected", "[serial]") {
   CHECK_THROWS_AS(parse_virtual_options("corrupt=2", c), std::invalid_argument);
   CHECK_THROWS_AS(parse_virtual_options("queue=1.5", c), std::invalid_argument);
   CHECK_THROWS_AS(parse_virtual_options("time-scale=0", c), std::invalid_argument);
+  parse_virtual_options("speed-factor=1.25", c);
+  CHECK(c.speed_factor == 1.25);
+  CHECK_THROWS_AS(parse_virtual_options("speed-factor=0", c), std::invalid_argument);
+}
+
+TEST_CASE("virtual printer: speed-factor runs moves faster than their feed rates and M115 does not say",
+          "[serial]") {
+  // 10 mm at F600 is 1 s; at speed-factor 2 the block ends after 0.5 s.
+  for (double factor : {1.0, 2.0}) {
+    VirtualPrinterConfig c;
+    c.speed_factor = factor;
+    VirtualPrinter p(c);
+    answers(p, 1);
+    p.receive("G1 X10 F600\nM115\n", 1);
+    std::vector<std::string> said = answers(p, 3);
+    for (const std::string& a : said) CHECK(a.find("SPEED") == std::string::npos);
+    CHECK(p.stats().last_move_end == Approx(1 + 1 / factor).margin(0.01));
+  }
 }
 
 TEST_CASE("virtual printer: an over-long line is cut at MAX_CMD_SIZE and refused like Marlin does", "[serial]") {

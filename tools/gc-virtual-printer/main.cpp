@@ -35,6 +35,9 @@ int main(int argc, char** argv) {
   app.add_option("--planner", c.planner, "Planner blocks, BLOCK_BUFFER_SIZE (default 16)")->type_name("N");
   app.add_option("--time-scale", c.time_scale, "Run this many times faster than real time (default 1)")
       ->type_name("X");
+  app.add_option("--speed-factor", c.speed_factor,
+                 "Moves run X times faster than their feed rates, untold to the host (default 1)")
+      ->type_name("X");
   app.add_flag("--advanced-ok", c.advanced_ok, "Answer \"ok N<n> P<planner free> B<queue free>\"");
   app.add_flag("--instant-moves", c.instant_moves, "Moves take no time: only the link limits the speed");
   bool no_link_report = false;
@@ -68,9 +71,10 @@ int main(int argc, char** argv) {
     c.greeting = parse_greeting_form(greeting);
     if (no_link_report) c.report_link = false;
     if (c.baud < 50 || c.queue < 1 || c.rx_buffer < 16 || c.max_line < 16 || c.planner < 1 || !(c.time_scale > 0) ||
-        !(o.drop_seconds >= 0))
+        !(c.speed_factor > 0) || !(o.drop_seconds >= 0))
       throw gcode::cli::UsageError(
-          "--baud, --queue, --rx-buffer, --max-line, --planner, --time-scale and --drop-seconds need sensible values");
+          "--baud, --queue, --rx-buffer, --max-line, --planner, --time-scale, --speed-factor and --drop-seconds "
+          "need sensible values");
   });
   return tool.run(argc, argv, [&] { return run_virtual_printer(o, c); });
 }

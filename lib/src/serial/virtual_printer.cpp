@@ -358,7 +358,7 @@ bool VirtualPrinter::process_move(const Move& m, double t) {
   double length = m.length > 0 ? m.length : std::abs(m.filament);
   if (length <= 0) return true;
   double feed = m.feedrate > 0 ? m.feedrate : 1500;
-  pending_duration_ = config_.instant_moves ? 0 : length / (feed / 60);
+  pending_duration_ = config_.instant_moves ? 0 : length / (feed / 60) / config_.speed_factor;
   pending_length_ = m.length;
   if (m.extruding && state_.position[kZ] > top_z_ + 1e-6) {
     top_z_ = state_.position[kZ];

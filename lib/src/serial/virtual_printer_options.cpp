@@ -65,6 +65,9 @@ void parse_virtual_options(std::string_view text, VirtualPrinterConfig& c) {
     } else if (key == "time-scale") {
       c.time_scale = parse_value(key, value);
       if (c.time_scale <= 0) throw std::invalid_argument("virtual printer option time-scale must be > 0");
+    } else if (key == "speed-factor") {
+      c.speed_factor = parse_value(key, value);
+      if (c.speed_factor <= 0) throw std::invalid_argument("virtual printer option speed-factor must be > 0");
     } else if (key == "advanced-ok") {
       c.advanced_ok = parse_flag(key, value);
     } else if (key == "instant-moves") {

@@ -18,6 +18,10 @@ struct VirtualPrinterConfig {
   int max_line = 96;          // MAX_CMD_SIZE: a line keeps max_line - 1 bytes
   int planner = 16;           // BLOCK_BUFFER_SIZE
   double time_scale = 1;      // simulated seconds per wall second
+  // Moves run this many times faster than the file's feed rates say, and
+  // M115 does not tell: a speed knob at 125 %, M220 from elsewhere, firmware
+  // limits above the host's model. time_scale is known to the host; this is not.
+  double speed_factor = 1;
   bool advanced_ok = false;   // answer "ok N.. P.. B.."
   bool instant_moves = false; // moves take no time: the link is the only limit
   bool report_link = true;    // M115 names TIME_SCALE and BAUD (a real firmware does not)
@@ -38,7 +42,7 @@ struct VirtualPrinterConfig {
 };
 
 // Applies "key=value,key=value" (the part after "virtual:") to `config`.
-// Keys: baud queue rx max-line planner time-scale advanced-ok instant-moves
+// Keys: baud queue rx max-line planner time-scale speed-factor advanced-ok instant-moves
 // report-link heat-rate corrupt drop-ok resend garbage busy silent-after
 // halt-after disconnect-after seed log greeting, and scheduled faults
 // (virtual_fault.hpp: "reset@line=N", "drop=S@time=T"). Throws std::invalid_argument naming a bad key or value.
