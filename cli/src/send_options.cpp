@@ -42,6 +42,11 @@ void add_send_options(Tool& tool, SendOptions& o) {
                "Leave out lines the firmware cannot take (over-long, control bytes, binary junk) and go on, "
                "instead of stopping before the first")->group(link);
   app.add_flag("--reset,!--no-reset", j.reset, "Pulse DTR to restart the board on connect (default: no)")->group(link);
+  app.add_option("--reconnect", j.reconnect,
+                 "When the port fails mid-print (EIO, ENODEV, a hang-up), wait up to SECONDS for it to come back at "
+                 "the same path, open it again without a DTR reset and go on where the printer is (default 180; "
+                 "0: stop at once)")
+      ->type_name("SECONDS")->check(CLI::NonNegativeNumber)->group(link);
   app.add_flag("--list-ports", o.list_ports, "List candidate serial ports and exit")->group(link);
 
   const char* control = "Control";

@@ -9,12 +9,16 @@
 #include <set>
 #include <string>
 
+#include "pty_run.hpp"
 #include "serial_check.hpp"
 #include "test_support.hpp"
 
 using gctest::quote;
 using gctest::run;
 using gctest::tool_path;
+using gctest::PtyRun;
+using gctest::send_through_pty;
+using gctest::require_exact;
 
 namespace {
 
@@ -30,39 +34,6 @@ const std::string& subdivided_file() {
     REQUIRE(r.status == 0);
   }
   return path;
-}
-
-struct PtyRun {
-  gctest::RunResult result;
-  gctest::ExecutedLog log;
-};
-
-// Starts gc-virtual-printer on a pty, runs gc-send against it, stops the printer.
-PtyRun send_through_pty(const std::string& file, const std::string& send_args, const std::string& printer_args) {
-  std::string dir = gctest::temp_dir();
-  std::string link = dir + "/printer";
-  std::string log = dir + "/executed.log";
-  std::string script = quote(tool_path("gc-virtual-printer")) + " -q --link " + quote(link) + " --log " + quote(log) +
-                       " " + printer_args + " & vp=$!\n"
-                       "for i in $(seq 500); do [ -e " + quote(link) + " ] && break; sleep 0.01; done\n" +
-                       quote(tool_path("gc-send")) + " --port " + quote(link) + " " + send_args + " " + quote(file) +
-                       "; status=$?\nkill $vp; wait $vp; exit $status";
-  PtyRun r;
-  r.result = run(script);
-  r.log = gctest::parse_executed_log(gctest::read_file(log));
-  return r;
-}
-
-void require_exact(const PtyRun& r, const std::vector<gctest::SentCommand>& expected) {
-  INFO(r.result.err);
-  REQUIRE(r.result.status == 0);
-  REQUIRE(r.log.commands.size() == expected.size() + 1);
-  for (std::size_t i = 0; i < expected.size(); ++i) {
-    INFO("command " << i);
-    REQUIRE(r.log.commands[i] == expected[i].text);
-    REQUIRE(r.log.numbers[i] == static_cast<long long>(i + 1));
-  }
-  CHECK(r.log.commands.back() == "M400");
 }
 
 }  // namespace

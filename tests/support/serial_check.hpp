@@ -37,15 +37,21 @@ struct ExecutedLog {
   std::vector<long long> numbers;     // line numbers of the numbered commands, in execution order
   std::vector<std::string> commands;  // their text
   std::size_t unnumbered = 0;         // handshake, M105 probes
+  std::vector<std::string> notes;     // "#" lines: resets and link drops
 };
 
-// Reads the virtual printer's log: time, N, X, Y, Z, E, command (tab-separated).
+// Reads the virtual printer's log: time, N, X, Y, Z, E, command (tab-separated),
+// and its notes of resets and link drops ("# ...").
 inline ExecutedLog parse_executed_log(std::string_view text) {
   ExecutedLog log;
   gcode::MemoryLineSplitter split(text);
   gcode::RawLine raw;
   while (split.next(raw)) {
     std::string_view s = raw.text;
+    if (!s.empty() && s[0] == '#') {
+      log.notes.emplace_back(s);
+      continue;
+    }
     std::size_t a = s.find('\t');
     std::size_t b = s.find('\t', a + 1);
     long long n = std::stoll(std::string(s.substr(a + 1, b - a - 1)));

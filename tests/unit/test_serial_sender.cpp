@@ -9,12 +9,14 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "gcode/serial/protocol.hpp"
 #include "gcode/serial/sender.hpp"
 #include "gcode/serial/virtual_printer.hpp"
+#include "printer_talk.hpp"
 #include "serial_check.hpp"
 #include "test_support.hpp"
 
@@ -56,6 +58,7 @@ Outcome simulate(const std::vector<std::string>& commands, SenderConfig sc, Virt
     double t = 0;
     std::size_t next = 0;
     std::string rx;
+    bool link_down = false;
     sender.start(t);
     while (!sender.finished() && t < limit) {
       while (sender.wants_input() && next < commands.size()) {
@@ -71,6 +74,13 @@ Outcome simulate(const std::vector<std::string>& commands, SenderConfig sc, Virt
         sender.written(out.size(), t);
       }
       printer.advance(t);
+      // The printer's link drops (a scheduled fault) as a port that fails
+      // and comes back at once: gc-send --reconnect's session.
+      if (printer.link_down() != link_down) {
+        link_down = printer.link_down();
+        if (link_down) sender.link_lost(t);
+        else sender.link_back(t);
+      }
       std::string_view tx = printer.transmitted(t);
       rx.append(tx);
       printer.take(tx.size());
@@ -262,6 +272,98 @@ TEST_CASE("sender: a fatal printer error stops the print", "[serial]") {
   REQUIRE(o.state == SenderState::Failed);
   CHECK(o.failure.find("fatal error: Thermal Runaway") != std::string::npos);
   CHECK(o.executed.size() < 700);
+}
+
+TEST_CASE("sender: after a link drop the printer ran on: the probe and M114 find where, every command once, in order",
+          "[serial][relink]") {
+  auto commands = fixture_commands("cura_cube_0.2_abs_zhop_skirt.gcode", 2000);
+  for (const char* flow : {"window", "advanced-ok"}) {
+    for (const char* fault : {"drop=5@line=40", "drop=30@line=700", "drop=0.5@layer=2", "drop=2@time=200"}) {
+      INFO(flow << ", " << fault);
+      SenderConfig sc;
+      sc.flow = *parse_flow_mode(flow);
+      sc.pace = true;
+      VirtualPrinterConfig pc;
+      pc.heat_rate = 1000;
+      pc.advanced_ok = std::string(flow) == "advanced-ok";
+      pc.scheduled.push_back(parse_scheduled_fault(fault));
+      Outcome o = simulate(commands, sc, pc);
+      CHECK(o.printer.link_drops == 1);
+      CHECK(o.sender.errors >= 1);  // the probe's "Line Number is not Last Line Number+1"
+      require_exact(o, commands);
+    }
+  }
+}
+
+TEST_CASE("sender: the probe after a reconnect waits out a heating printer that reports its temperatures",
+          "[serial][relink]") {
+  // M109 takes 18 simulated seconds and reads no line meanwhile; --timeout is 5.
+  std::vector<std::string> commands = {"M104 S200", "M109 S200", "G1 X10 E1 F600", "G1 X20 E2", "G1 X30 E3"};
+  SenderConfig sc;
+  sc.timeout = 5;
+  VirtualPrinterConfig pc;
+  pc.heat_rate = 10;
+  pc.scheduled.push_back(parse_scheduled_fault("drop=1@time=3"));  // while M109 waits
+  Outcome o = simulate(commands, sc, pc);
+  CHECK(o.printer.link_drops == 1);
+  CHECK(o.seconds > 18);
+  require_exact(o, commands);
+}
+
+TEST_CASE("sender: a printer that restarted while its link was down stops the print, in either greeting form",
+          "[serial][relink]") {
+  auto commands = fixture_commands("cura_cube_0.2_abs_zhop_skirt.gcode", 2000);
+  for (GreetingForm form : {GreetingForm::Start, GreetingForm::NulStart}) {
+    SenderConfig sc;
+    VirtualPrinterConfig pc;
+    pc.heat_rate = 1000;
+    pc.greeting = form;
+    pc.scheduled.push_back(parse_scheduled_fault("drop-reset=5@line=700"));
+    Outcome o = simulate(commands, sc, pc);
+    INFO(o.failure);
+    REQUIRE(o.state == SenderState::Failed);
+    CHECK(o.failure.find("the printer restarted") != std::string::npos);
+    CHECK(o.failure.find("while its port was away") != std::string::npos);
+    CHECK(o.executed.size() < 720);
+  }
+}
+
+TEST_CASE("sender: after a reconnect, M114 must show where the last line taken left the printer", "[serial][relink]") {
+  auto scripted = [](std::string_view m114) {
+    SenderConfig sc;
+    sc.handshake = false;
+    sc.finish_with_m400 = false;
+    auto sender = std::make_unique<Sender>(sc, [](LogLevel, std::uint64_t, std::string_view) {});
+    Sender& s = *sender;
+    s.start(0);
+    for (const char* c : {"G1 X10 F600", "G1 X20", "G1 X30"}) s.submit(c, 1, 1);
+    s.end_of_input();
+    s.pump(0);
+    s.written(s.output().size(), 0);
+    s.on_line("ok", 0.1);  // N1; the oks of N2 and N3 are lost with the link
+    s.link_lost(0.2);
+    CHECK(s.output().empty());
+    s.link_back(1.0);
+    // A number the printer cannot expect: it names its last line instead.
+    CHECK(s.output() == gctest::numbered(5, "M105"));
+    s.written(s.output().size(), 1.0);
+    s.on_line("Error:Line Number is not Last Line Number+1, Last Line: 2", 1.1);
+    s.on_line("Resend: 3", 1.1);
+    CHECK(s.output().empty());  // M114 waits for the refusal's ok
+    s.on_line("ok", 1.1);
+    CHECK(s.output() == "M114\n");
+    s.written(s.output().size(), 1.1);
+    s.on_line(m114, 1.2);
+    return sender;
+  };
+  auto kept = scripted("X:20.00 Y:0.00 Z:0.00 E:0.00 Count X:1600 Y:0 Z:0");
+  CHECK(kept->state() == SenderState::Printing);
+  CHECK(kept->last_acknowledged().number == 2);
+  kept->on_line("ok", 1.2);
+  CHECK(kept->output() == gctest::numbered(3, "G1 X30"));
+  auto moved = scripted("X:25.00 Y:0.00 Z:0.00 E:0.00 Count X:2000 Y:0 Z:0");
+  CHECK(moved->state() == SenderState::Failed);
+  CHECK(moved->failure().find("stands at X25.000, but N2") != std::string::npos);
 }
 
 TEST_CASE("sender: M112 goes out at once and halts the printer", "[serial]") {

@@ -280,6 +280,7 @@ int run_send_job(SendJob& job, Diagnostics& diag) {
   // stream is past its header.
   int e_relative = resume ? -1 : session.read_e_mode(job.e_mode, input.name());
   session.set_control(control, job.control_path);
+  if (!port.printer) session.set_reconnect(job.port, PortOptions{job.baud, false}, job.reconnect);
   ProgressOptions progress = job.progress;
   if (job.quiet) progress.mode = ProgressMode::Off;  // the status file is still kept
   session.set_progress(progress);
@@ -293,6 +294,8 @@ int run_send_job(SendJob& job, Diagnostics& diag) {
   if (!job.quiet) print_summary(sender, port.printer.get(), *session.control(), port.baud, port.scale, port.pty);
   if (journal && !job.quiet) print_journal_summary(journal->writer());
   if (log != nullptr) std::fclose(log);
+  // The session closed the descriptor it was given when the port went away.
+  if (session.port_replaced()) port.fd = -1;
   return exit_status(sender, job, journal.get(), name);
 }
 

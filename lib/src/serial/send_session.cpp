@@ -85,10 +85,7 @@ SendSession::SendSession(EventLoop& loop, Sender& sender, int input_fd, int port
   sigprocmask(SIG_BLOCK, &mask, &saved_mask_);
   signal_fd_ = signalfd(-1, &mask, SFD_CLOEXEC | SFD_NONBLOCK);
   if (signal_fd_ >= 0) loop_.add_fd(signal_fd_, POLLIN, [this](short) { on_signal(); });
-  port_watch_ = loop_.add_fd(port_fd_, POLLIN, [this](short revents) {
-    if (revents & (POLLIN | POLLHUP | POLLERR)) read_port();
-    update();
-  });
+  watch_port();
   loop_.add_timer([this] { return sender_.deadline(); },
                   [this](double now) {
                     sender_.on_timer(now);
@@ -96,8 +93,16 @@ SendSession::SendSession(EventLoop& loop, Sender& sender, int input_fd, int port
                   });
 }
 
+void SendSession::watch_port() {
+  port_watch_ = loop_.add_fd(port_fd_, POLLIN, [this](short revents) {
+    if (revents & (POLLIN | POLLHUP | POLLERR)) read_port();
+    update();
+  });
+}
+
 SendSession::~SendSession() {
   if (signal_fd_ >= 0) ::close(signal_fd_);
+  if (port_replaced_ && port_fd_ >= 0) ::close(port_fd_);
   // Back to the mask the caller had (a signal it blocked itself stays blocked).
   sigprocmask(SIG_SETMASK, &saved_mask_, nullptr);
 }
@@ -390,10 +395,7 @@ void SendSession::read_port() {
     if (n < 0 && errno == EINTR) continue;
     if (n < 0 && errno == EAGAIN) break;
     if (n <= 0) {
-      sender_.disconnected(n == 0 ? "end of file" : std::strerror(errno));
-      loop_.set_events(port_watch_, 0);
-      loop_.remove_fd(port_watch_);
-      port_watch_ = -1;
+      port_lost(n == 0 ? "end of file" : std::strerror(errno));
       return;
     }
     double now = EventLoop::now();
@@ -412,13 +414,13 @@ void SendSession::read_port() {
 void SendSession::flush_port() {
   // Every command's record goes to the journal before its bytes go out.
   if (journal_ != nullptr && !sender_.output().empty()) journal_->flush(EventLoop::now());
-  while (!sender_.output().empty()) {
+  while (port_watch_ >= 0 && !sender_.output().empty()) {
     std::string_view out = sender_.output();
     ssize_t n = ::write(port_fd_, out.data(), out.size());
     if (n < 0 && errno == EINTR) continue;
     if (n < 0 && errno == EAGAIN) break;
     if (n < 0) {
-      sender_.disconnected(std::strerror(errno));
+      port_lost(std::strerror(errno));
       return;
     }
     sender_.written(static_cast<std::size_t>(n), EventLoop::now());
@@ -429,6 +431,11 @@ void SendSession::on_signal() {
   signalfd_siginfo info{};
   while (::read(signal_fd_, &info, sizeof info) == static_cast<ssize_t>(sizeof info)) {
     ++interrupts_;
+    if (reconnecting_) {
+      reconnecting_ = false;
+      sender_.disconnected("interrupted while waiting for the port to come back: nothing more was sent");
+      continue;
+    }
     if (interrupts_ == 1 && control_->interrupt()) continue;
     if (!sender_.emergency()) {
       diag_.error("emergency stop: M112 sent");
@@ -441,7 +448,7 @@ void SendSession::on_signal() {
 ProgressSnapshot SendSession::snapshot() const {
   ProgressSnapshot s;
   const SenderStats& st = sender_.stats();
-  s.state = sender_.finished() ? std::string_view("done") : control_->state_label();
+  s.state = state_label();
   s.layer = control_->layer();
   s.layers = std::max(total_layers_, layers());
   if (current_ != nullptr) {
@@ -495,8 +502,13 @@ void SendSession::update() {
     eta_origin_estimate_ = sender_.estimated_time();
     eta_origin_paused_ = control_->paused_seconds(eta_origin_wall_);
   }
-  if (progress_ && (control_->state_label() != shown_state_ || control_->layer() != shown_layer_)) {
-    shown_state_ = control_->state_label();
+  if (reconnecting_ && control_->cancelled()) {
+    // Nobody to send the safe end to: the print stops where the printer is.
+    reconnecting_ = false;
+    sender_.disconnected("cancelled while waiting for the port to come back: nothing more was sent");
+  }
+  if (progress_ && (state_label() != shown_state_ || control_->layer() != shown_layer_)) {
+    shown_state_ = state_label();
     shown_layer_ = control_->layer();
     progress_->report(snapshot(), EventLoop::now(), false);
   }

@@ -118,6 +118,7 @@ void Sender::enqueue(std::string_view command, std::uint64_t source_line, int la
   s.long_running = config_.firmware->is_long_running(line);
   s.temperature_query = line.is_m(105);
   Move move = machine_.apply(line);
+  s.at = {machine_.position[kX], machine_.position[kY], machine_.position[kZ]};
   if (on_numbered_) on_numbered_(next_number_, source_line, layer, machine_);
   // Until the estimator's time is final (16 moves later), length / feed rate.
   s.motion = 0;
@@ -216,7 +217,7 @@ bool Sender::settled(double now) const {
 
 void Sender::fill(double now) {
   pacer_.clear_wake();
-  if (state_ != SenderState::Printing || paused_ || cancelled_) return;
+  if (state_ != SenderState::Printing || paused_ || cancelled_ || relink_ != Relink::None) return;
   if (resend_.settling()) {
     if (!settled(now)) return;
     resend_.settled();
@@ -256,7 +257,8 @@ void Sender::fill(double now) {
 
 void Sender::check_done(double now) {
   // Done when every line is acknowledged (an M105 of ours may still be out).
-  if (state_ == SenderState::Printing && input_done_ && (final_queued_ || !config_.finish_with_m400) &&
+  if (state_ == SenderState::Printing && relink_ == Relink::None && input_done_ &&
+      (final_queued_ || !config_.finish_with_m400) &&
       next_send_ == next_number_ && !lines_in_flight() && !resend_.settling() && next_number_ > 1) {
     if (refusal_.empty()) {
       state_ = SenderState::Done;
@@ -306,6 +308,10 @@ void Sender::on_ok(const Response& r, double now) {
   if (answers_handshake(now)) return;
   // Marlin answers a rejected line with Error, Resend and "ok": that ok
   // belongs to the rejected line, which already left the flight list.
+  if (relink_ == Relink::Locating || relink_ == Relink::Finishing) {
+    relink_ok(now);
+    return;
+  }
   if (resend_.take_rejected_ok()) return;
   probes_.answered();
   idle_hint_ = false;
@@ -344,6 +350,10 @@ void Sender::on_resend(long long n, double now) {
   resend_.expect_rejected_ok();
   idle_hint_ = false;
   if (state_ != SenderState::Printing) return;
+  if (relink_ == Relink::Probing) {
+    relocate(n, now);
+    return;
+  }
   if (n < 1 || n > highest_sent_ + 1 || n > next_number_) {
     // A line never sent: nothing to rewind to (its "ok" still follows).
     ++stats_.ignored_resends;
@@ -405,6 +415,7 @@ void Sender::on_line(std::string_view text, double now) {
   resend_.heard(now);
   Response r = parse_response(text);
   note_temperatures(r, text);
+  if (relink_ == Relink::Locating && position_asked_ && check_position(text, now)) return;
   if (r.kind != ResponseKind::Ok && r.kind != ResponseKind::Resend && r.kind != ResponseKind::Empty)
     resend_.other_answer();
   switch (r.kind) {
@@ -488,7 +499,8 @@ void Sender::on_start() {
   if (state_ == SenderState::Handshake) {
     send_unnumbered("M110 N0", false, false);
   } else if (state_ == SenderState::Printing) {
-    fail("the printer restarted (it said \"start\")");
+    fail(fmt::format("the printer restarted (it said \"start\"){}; last acknowledged: {}",
+                     relink_ != Relink::None ? " while its port was away" : "", describe(last_acked_)));
   }
 }
 
@@ -550,7 +562,10 @@ double Sender::overdue_at() const {
 }
 
 double Sender::deadline() const {
-  if (finished()) return kNever;
+  if (finished() || relink_ == Relink::Down) return kNever;
+  // A printer heating or homing reads no line until it is done, but says
+  // it is alive (temperatures, busy): the probe's answer may take that long.
+  if (relink_ != Relink::None) return std::max(relink_since_, last_any_rx_) + config_.timeout;
   if (state_ == SenderState::Capabilities && caps_answered_) return last_any_rx_ + kQuietStart;
   if (state_ == SenderState::Handshake || state_ == SenderState::Capabilities)
     return std::min(handshake_retry_ + std::min(1.0, config_.timeout / 3), handshake_start_ + config_.timeout);
@@ -589,6 +604,13 @@ void Sender::probe(double now, bool silent) {
 
 void Sender::on_timer(double now) {
   if (finished()) return;
+  if (relink_ != Relink::None) {
+    if (relink_ != Relink::Down && now >= std::max(relink_since_, last_any_rx_) + config_.timeout)
+      fail(fmt::format("after the reconnect the printer did not say where it is (silent for {:g} s); last "
+                       "acknowledged: {}",
+                       config_.timeout, describe(last_acked_)));
+    return;
+  }
   if (state_ == SenderState::Capabilities && caps_answered_ && now >= last_any_rx_ + kQuietStart) {
     state_ = SenderState::Printing;
     if (firmware_.advanced_ok) flow_.firmware_has_advanced_ok();

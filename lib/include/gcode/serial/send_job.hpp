@@ -24,6 +24,7 @@ struct SendJob {
   std::string port = "virtual";     // a path, or virtual[:opts] (vconfig holds them)
   int baud = 250000;
   bool reset = false;
+  double reconnect = 180;           // seconds a lost port is waited for (0: the print ends at once)
   SenderConfig sender;              // flow, queue, buffers, timeouts, line limits, pace
   VirtualPrinterConfig vconfig;
   PrintControlConfig control;       // park filled in by `park` once the file's area is known

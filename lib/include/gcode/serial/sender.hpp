@@ -13,6 +13,7 @@
 // ends with M400. How and why, case by case: docs/gc-send-sender.md.
 #include <cstdint>
 #include <algorithm>
+#include <array>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -132,6 +133,17 @@ class Sender : private TimeSink {
 
   // The port went away (unplugged board, closed pseudo-terminal).
   void disconnected(std::string_view why);
+  // The port went away but may come back (gc-send --reconnect,
+  // sender_relink.cpp): nothing is sent until link_back(), and what was on
+  // its way is forgotten (the printer may or may not have it).
+  void link_lost(double now);
+  // The port is back: the printer is asked which line it took last (a
+  // deliberately mis-numbered line: its "Last Line:") and where it stands
+  // (M114). A printer that ran on and stands where that line left it
+  // (within 0.01 mm) gets the next line; one that restarted, or stands
+  // elsewhere, fails the print with a message that says so.
+  void link_back(double now);
+  bool relinking() const { return relink_ != Relink::None; }
 
   // The printer's host actions (//action:pause, //action:resume); without a
   // handler a pause holds sending until the resume.
@@ -204,6 +216,10 @@ class Sender : private TimeSink {
   static constexpr double kNever = 1e300;
   static constexpr std::string_view kProbe = "M105";  // asks for an answer that proves progress
 
+    // Down: no port; Probing: the mis-numbered line is out; Locating: the
+  // printer named its last line, M114 goes out after the refusal's ok;
+  // Finishing: the position is right, M114's own ok is still to come.
+  enum class Relink : std::uint8_t { None, Down, Probing, Locating, Finishing };
   struct Slot {
     std::string wire;            // "N12 G1 X1*34\n"
     std::uint64_t source_line = 0;
@@ -216,6 +232,7 @@ class Sender : private TimeSink {
     double motion = 0;           // printer seconds of moves (the estimator's once final)
     double nominal = 0;          // length / feed rate: no move takes less
     bool motion_final = false;
+    std::array<double, 3> at{};  // X Y Z after it (what M114 says once it has run)
   };
   Slot& slot(long long n) { return ring_[static_cast<std::size_t>(n) & (ring_.size() - 1)]; }
   const Slot& slot(long long n) const { return ring_[static_cast<std::size_t>(n) & (ring_.size() - 1)]; }
@@ -249,6 +266,9 @@ class Sender : private TimeSink {
   bool paced(double now);
   void planned(const Slot& s, double now);
   void log(LogLevel level, std::uint64_t input_line, std::string_view message) const;
+  void relocate(long long expected, double now);
+  bool check_position(std::string_view text, double now);
+  void relink_ok(double now);
 
   SenderConfig config_;
   Logger log_;
@@ -288,6 +308,11 @@ class Sender : private TimeSink {
   double handshake_start_ = 0;
   double handshake_retry_ = 0;
   int timeouts_in_row_ = 0;
+
+  Relink relink_ = Relink::None;  // after the port went away (sender_relink.cpp)
+  double relink_since_ = 0;
+  long long relink_line_ = 0;    // the last line the printer says it took
+  bool position_asked_ = false;
 
   Position last_acked_;
   FirmwareInfo firmware_;

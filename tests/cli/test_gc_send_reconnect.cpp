@@ -1,0 +1,111 @@
+// gc-send --reconnect against gc-virtual-printer's link drops (its pty goes
+// away and comes back at the same path): a printer that ran on gets the rest
+// of the print, every move once and in order, across both sessions; one that
+// restarted, or a port that stays away longer than --reconnect, stops the
+// print with a message that says what happened. While gc-send waits, its
+// status file says "reconnecting" and a cancel ends the wait.
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "pty_run.hpp"
+#include "serial_check.hpp"
+#include "test_support.hpp"
+
+using gctest::PtyRun;
+using gctest::quote;
+using gctest::require_exact;
+using gctest::run;
+using gctest::send_through_pty;
+using gctest::tool_path;
+
+namespace {
+
+// The first 6000 lines of a real slicer file cut into 0.2 mm pieces.
+const std::string& pieces_file() {
+  static const std::string path = [] {
+    std::string p = gctest::temp_dir() + "/pieces.gcode";
+    auto r = run(quote(tool_path("gc-subdivide")) + " --max 0.2 " +
+                 quote(gctest::fixture_path("prusa_cube_0.2_mk3s_rel_zhop.gcode")) + " | head -n 6000 > " + quote(p));
+    REQUIRE(r.status == 0);
+    return p;
+  }();
+  return path;
+}
+
+// Real moves (the planner runs on during the drop), 200 times real time.
+const std::string kPrinter = "--time-scale 200 --heat-rate 1000 ";
+
+}  // namespace
+
+TEST_CASE("gc-send: a link drop in the start code or mid-layer while the printer runs on: the print completes, every move once, in order",
+          "[gc-send][reconnect]") {
+  auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
+  REQUIRE(expected.size() > 5000);
+  // In the start code and mid-layer; 100 simulated seconds are half a
+  // second of wall time without a port.
+  for (const char* fault : {"drop=20@line=4", "drop=100@line=3000"}) {
+    PtyRun r = send_through_pty(pieces_file(), "--reconnect 30", kPrinter + "--fault " + fault);
+    INFO(fault << ": " << r.result.err);
+    // One log over both sessions.
+    require_exact(r, expected);
+    CHECK(r.result.err.find("lost the printer's port") != std::string::npos);
+    CHECK(r.result.err.find("the port is back after") != std::string::npos);
+    CHECK(r.result.err.find("the printer ran on and stands where N") != std::string::npos);
+    REQUIRE(r.log.notes.size() == 2);
+    CHECK(r.log.notes[0].rfind("# link down at ", 0) == 0);
+    CHECK(r.log.notes[1].rfind("# link up at ", 0) == 0);
+  }
+}
+
+TEST_CASE("gc-send: a port that stays away longer than --reconnect stops the print cleanly, saying so",
+          "[gc-send][reconnect]") {
+  auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
+  // 2000 simulated seconds are 10 s of wall time; gc-send waits 1 s.
+  PtyRun r = send_through_pty(pieces_file(), "--reconnect 1", kPrinter + "--fault drop=2000@line=1000");
+  INFO(r.result.err);
+  CHECK(r.result.status == 1);
+  CHECK(r.result.err.find("did not come back within 1 s (--reconnect)") != std::string::npos);
+  CHECK(r.result.err.find("last acknowledged: line ") != std::string::npos);
+  // What ran is the start of the input, in order, nothing twice.
+  REQUIRE(r.log.commands.size() >= 1000);
+  REQUIRE(r.log.commands.size() < expected.size());
+  for (std::size_t i = 0; i < r.log.commands.size(); ++i) {
+    INFO("command " << i);
+    REQUIRE(r.log.commands[i] == expected[i].text);
+  }
+}
+
+TEST_CASE("gc-send: a printer that restarted while its port was away stops the print, saying so",
+          "[gc-send][reconnect]") {
+  PtyRun r = send_through_pty(pieces_file(), "--reconnect 30", kPrinter + "--fault drop-reset=50@line=2000");
+  INFO(r.result.err);
+  CHECK(r.result.status == 1);
+  // Its greeting reaches gc-send on the new port, or the probe finds its
+  // line numbers back at 0: either way the message says so.
+  CHECK(r.result.err.find("the printer restarted") != std::string::npos);
+  CHECK(r.result.err.find("while its port was away") != std::string::npos);
+  CHECK(r.log.notes.size() == 3);  // down, up, the reset with what it lost
+  CHECK(r.log.commands.size() < 3000);
+}
+
+TEST_CASE("gc-send: while it waits for the port the status file says reconnecting, and a cancel ends the wait",
+          "[gc-send][reconnect]") {
+  std::string dir = gctest::temp_dir();
+  std::string status = dir + "/status.json";
+  std::string fifo = dir + "/control";
+  // The drop lasts 60 s of wall time; the cancel comes as soon as the
+  // status file says reconnecting.
+  std::string during = "for i in $(seq 600); do grep -q '\"reconnecting\"' " + quote(status) +
+                       " 2>/dev/null && break; sleep 0.02; done\n"
+                       "grep -o '\"state\": *\"[a-z]*\"' " + quote(status) + " >&2\n"
+                       "echo status > " + quote(fifo) + "; sleep 0.3; echo cancel > " + quote(fifo);
+  PtyRun r = send_through_pty(pieces_file(),
+                              "--reconnect 120 --status-file " + quote(status) + " --control " + quote(fifo),
+                              kPrinter + "--fault drop=12000@line=1000", during);
+  INFO(r.result.err);
+  CHECK(r.result.status == 1);
+  CHECK(r.result.err.find("\"reconnecting\"") != std::string::npos);  // the status file
+  CHECK(r.result.err.find("gc-send: reconnecting") != std::string::npos);  // the FIFO's status answer
+  CHECK(r.result.err.find("cancelled while waiting for the port to come back") != std::string::npos);
+}

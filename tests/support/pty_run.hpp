@@ -1,0 +1,55 @@
+#pragma once
+// Shared by the gc-send tool tests: gc-virtual-printer on a pseudo-terminal,
+// gc-send against it, and what the printer's log says it executed.
+#include <catch2/catch.hpp>
+
+#include <string>
+#include <vector>
+
+#include "serial_check.hpp"
+#include "test_support.hpp"
+
+namespace gctest {
+
+struct PtyRun {
+  RunResult result;
+  ExecutedLog log;
+  std::string log_text;
+};
+
+// Starts gc-virtual-printer on a pty, runs gc-send against it, stops the
+// printer. With `during`, gc-send runs in the background while that shell
+// script runs ($gs is its pid), and its status is awaited after it.
+inline PtyRun send_through_pty(const std::string& file, const std::string& send_args, const std::string& printer_args,
+                               const std::string& during = "") {
+  std::string dir = temp_dir();
+  std::string link = dir + "/printer";
+  std::string log = dir + "/executed.log";
+  std::string send = quote(tool_path("gc-send")) + " --port " + quote(link) + " " + send_args + " " + quote(file);
+  std::string script = quote(tool_path("gc-virtual-printer")) + " -q --link " + quote(link) + " --log " + quote(log) +
+                       " " + printer_args + " & vp=$!\n"
+                       "for i in $(seq 500); do [ -e " + quote(link) + " ] && break; sleep 0.01; done\n" +
+                       (during.empty() ? send + "; status=$?\n" : send + " & gs=$!\n" + during + "\nwait $gs; status=$?\n") +
+                       "kill $vp; wait $vp; exit $status";
+  PtyRun r;
+  r.result = run(script);
+  r.log_text = read_file(log);
+  r.log = parse_executed_log(r.log_text);
+  return r;
+}
+
+// The printer executed exactly the input's commands, numbered as sent, in
+// order, then the final M400; across all the sessions its log covers.
+inline void require_exact(const PtyRun& r, const std::vector<SentCommand>& expected) {
+  INFO(r.result.err);
+  REQUIRE(r.result.status == 0);
+  REQUIRE(r.log.commands.size() == expected.size() + 1);
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    INFO("command " << i);
+    REQUIRE(r.log.commands[i] == expected[i].text);
+    REQUIRE(r.log.numbers[i] == static_cast<long long>(i + 1));
+  }
+  CHECK(r.log.commands.back() == "M400");
+}
+
+}  // namespace gctest
