@@ -75,6 +75,7 @@ class Grid {
     segments_.push_back(s);
     const double lo[2] = {std::min(s.a[0], s.b[0]), std::min(s.a[1], s.b[1])};
     const double hi[2] = {std::max(s.a[0], s.b[0]), std::max(s.a[1], s.b[1])};
+    boxes_.push_back({lo[0], lo[1], hi[0], hi[1]});
     for (long i = cell(lo[0]); i <= cell(hi[0]); ++i)
       for (long j = cell(lo[1]); j <= cell(hi[1]); ++j) cells_[key(layer, i, j)].push_back(segments_.size() - 1);
   }
@@ -87,6 +88,14 @@ class Grid {
         auto it = cells_.find(key(layer, i, j));
         if (it == cells_.end()) continue;
         for (std::size_t k : it->second) {
+          // A segment whose box is farther than the nearest so far cannot
+          // replace it: skipped without its (costly) distance. The margin,
+          // far above rounding, keeps the answer bit for bit the one of
+          // measuring every segment, first found of equals included.
+          const std::array<double, 4>& box = boxes_[k];
+          const double bx = std::max({box[0] - p[0], 0.0, p[0] - box[2]});
+          const double by = std::max({box[1] - p[1], 0.0, p[1] - box[3]});
+          if (bx * bx + by * by > (d + 1e-9) * (d + 1e-9)) continue;
           double tk = 0;
           const double dk = to_segment(p, segments_[k].a, segments_[k].b, tk);
           if (dk < d) d = dk, t = tk, best = &segments_[k];
@@ -101,6 +110,7 @@ class Grid {
     return (static_cast<long long>(layer) << 40) ^ (static_cast<long long>(i + 100000) << 20) ^ (j + 100000);
   }
   std::vector<Segment> segments_;
+  std::vector<std::array<double, 4>> boxes_;  // each segment's x-y box: lo x, lo y, hi x, hi y
   std::unordered_map<long long, std::vector<std::size_t>> cells_;
 };
 
