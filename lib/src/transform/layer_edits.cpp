@@ -246,82 +246,104 @@ LayerAction LayerEditPlan::at_layer(const LayerInfo& info, const SpliceContext& 
   action.shift = context.shift;
   after_layer(context, action);
   if (skip_ && skip_->contains(info, total_)) {
-    skip_matched_ = true;
-    action.keep = false;
-    const Fixed h = z_of(info.height);
-    if (keep_z_) {
-      if (fill_ == 0) fill_first_ = info.index;
-      fill_last_ = info.index;
-      fill_ += h.to_double();
-    } else {
-      action.shift -= h;
-    }
-    report_.push_back(fmt::format("{} left out{}", describe(info),
-                                  keep_z_ ? "" : fmt::format("; later layers {} mm down", mm(h.to_double()))));
+    skip_layer(info, action);
     return action;
   }
-  double scale = 1;
-  if (fill_ > 0) {
-    double h = info.height > 0 ? info.height : 0;
-    if (h <= 0) throw std::runtime_error(fmt::format("{} has no height to scale its extrusion by", describe(info)));
-    scale = (h + fill_) / h;
-    std::string what = fill_first_ == fill_last_ ? fmt::format("layer {}", fill_first_)
-                                                  : fmt::format("layers {}-{}", fill_first_, fill_last_);
-    if (diag_ != nullptr)
-      diag_->warn(fmt::format("--keep-z: {} printed with {} times its extrusion to fill the {} mm of {} left out: "
-                              "this over-extrudes by design",
-                              describe(info), mm(scale), mm(fill_), what));
-    report_.push_back(fmt::format("{} extrusion x{} (fills {})", describe(info), mm(scale), what));
-    fill_ = 0;
-  }
+  const double scale = fill_scale(info);
   for (Replace& r : replace_) {
     if (!r.layers.contains(info, total_)) continue;
-    r.matched = true;
-    LayerIndex& index = *r.file.index;
-    int j = 0;
-    if (!r.file_layers.empty()) {
-      if (r.used >= r.file_layers.size())
-        throw std::runtime_error(fmt::format("{}: more layers replaced than {} lists ({})", describe(info),
-                                             r.file.name, r.file_layers.size()));
-      j = r.file_layers[r.used++];
-    } else {
-      index.reach_above(info.z + kSameZ, 0);
-      double best = 1e300;
-      for (int k = 1; k <= index.layers(); ++k) {
-        double d = std::fabs(index.layer(k).info.z - info.z);
-        if (d < best) {
-          best = d;
-          j = k;
-        }
-      }
-      if (j == 0 || best > kSameZ)
-        throw std::runtime_error(
-            j == 0 ? fmt::format("{} has no layers to replace {} with", r.file.name, describe(info))
-                   : fmt::format("{} has no layer at Z {} to replace {} with (nearest: layer {} at Z {}); name "
-                                 "its layers with --with {}:LAYERS",
-                                 r.file.name, mm(info.z), describe(info), j, mm(index.layer(j).info.z), r.file.name));
-    }
-    check_placement(r.file, j - 1, context);
-    SpliceBlock b = layer_index_block(index, j, j);
-    const IndexedLayer& l = index.layer(j);
-    b.z_shift = z_of(info.z) + action.shift - z_of(l.info.z);
-    if (scale != 1) {
-      // The fill goes to the block printed in this layer's place.
-      b.extrusion_scale = (l.info.height > 0 ? (l.info.height + (scale - 1) * info.height) / l.info.height : scale);
-    }
-    b.note = fmt::format("{}{} replaced by layer {} of {} (Z {})", note_, describe(info), j, r.file.name,
-                         mm(l.info.z));
-    if (std::fabs(l.info.height - info.height) > 0.01 && diag_ != nullptr)
-      diag_->warn(fmt::format("{} is {} mm high, layer {} of {} {} mm: its extrusion is meant for another height",
-                              describe(info), mm(info.height), j, r.file.name, mm(l.info.height)));
-    report_.push_back(fmt::format("{} replaced by layer {} of {} (Z {})", describe(info), j, r.file.name,
-                                  mm(l.info.z)));
-    action.blocks.push_back(std::move(b));
-    action.keep = false;
+    replace_layer(r, info, context, scale, action);
     return action;
   }
   action.extrusion_scale = scale;
   return action;
+}
+
+// --skip: the layer is left out; later layers come down by its height, or
+// with --keep-z its height is filled by the next printed layer.
+void LayerEditPlan::skip_layer(const LayerInfo& info, LayerAction& action) {
+  skip_matched_ = true;
+  action.keep = false;
+  const Fixed h = z_of(info.height);
+  if (keep_z_) {
+    if (fill_ == 0) fill_first_ = info.index;
+    fill_last_ = info.index;
+    fill_ += h.to_double();
+  } else {
+    action.shift -= h;
+  }
+  report_.push_back(fmt::format("{} left out{}", describe(info),
+                                keep_z_ ? "" : fmt::format("; later layers {} mm down", mm(h.to_double()))));
+}
+
+// The extrusion factor of the first layer printed after --keep-z left
+// layers out (1 otherwise): it fills their height.
+double LayerEditPlan::fill_scale(const LayerInfo& info) {
+  if (fill_ <= 0) return 1;
+  double h = info.height > 0 ? info.height : 0;
+  if (h <= 0) throw std::runtime_error(fmt::format("{} has no height to scale its extrusion by", describe(info)));
+  const double scale = (h + fill_) / h;
+  std::string what = fill_first_ == fill_last_ ? fmt::format("layer {}", fill_first_)
+                                                : fmt::format("layers {}-{}", fill_first_, fill_last_);
+  if (diag_ != nullptr)
+    diag_->warn(fmt::format("--keep-z: {} printed with {} times its extrusion to fill the {} mm of {} left out: "
+                            "this over-extrudes by design",
+                            describe(info), mm(scale), mm(fill_), what));
+  report_.push_back(fmt::format("{} extrusion x{} (fills {})", describe(info), mm(scale), what));
+  fill_ = 0;
+  return scale;
+}
+
+// The layer of a --with file that replaces `info`: the next one it lists,
+// else the one at the same Z (an error when it has none).
+int LayerEditPlan::replacement_of(Replace& r, const LayerInfo& info) {
+  LayerIndex& index = *r.file.index;
+  if (!r.file_layers.empty()) {
+    if (r.used >= r.file_layers.size())
+      throw std::runtime_error(fmt::format("{}: more layers replaced than {} lists ({})", describe(info), r.file.name,
+                                           r.file_layers.size()));
+    return r.file_layers[r.used++];
+  }
+  index.reach_above(info.z + kSameZ, 0);
+  int j = 0;
+  double best = 1e300;
+  for (int k = 1; k <= index.layers(); ++k) {
+    double d = std::fabs(index.layer(k).info.z - info.z);
+    if (d < best) {
+      best = d;
+      j = k;
+    }
+  }
+  if (j == 0 || best > kSameZ)
+    throw std::runtime_error(
+        j == 0 ? fmt::format("{} has no layers to replace {} with", r.file.name, describe(info))
+               : fmt::format("{} has no layer at Z {} to replace {} with (nearest: layer {} at Z {}); name "
+                             "its layers with --with {}:LAYERS",
+                             r.file.name, mm(info.z), describe(info), j, mm(index.layer(j).info.z), r.file.name));
+  return j;
+}
+
+// --with: the layer is printed from the other file, at this layer's height.
+void LayerEditPlan::replace_layer(Replace& r, const LayerInfo& info, const SpliceContext& context, double scale,
+                                  LayerAction& action) {
+  r.matched = true;
+  LayerIndex& index = *r.file.index;
+  const int j = replacement_of(r, info);
+  check_placement(r.file, j - 1, context);
+  SpliceBlock b = layer_index_block(index, j, j);
+  const IndexedLayer& l = index.layer(j);
+  b.z_shift = z_of(info.z) + action.shift - z_of(l.info.z);
+  if (scale != 1) {
+    // The fill goes to the block printed in this layer's place.
+    b.extrusion_scale = (l.info.height > 0 ? (l.info.height + (scale - 1) * info.height) / l.info.height : scale);
+  }
+  b.note = fmt::format("{}{} replaced by layer {} of {} (Z {})", note_, describe(info), j, r.file.name, mm(l.info.z));
+  if (std::fabs(l.info.height - info.height) > 0.01 && diag_ != nullptr)
+    diag_->warn(fmt::format("{} is {} mm high, layer {} of {} {} mm: its extrusion is meant for another height",
+                            describe(info), mm(info.height), j, r.file.name, mm(l.info.height)));
+  report_.push_back(fmt::format("{} replaced by layer {} of {} (Z {})", describe(info), j, r.file.name, mm(l.info.z)));
+  action.blocks.push_back(std::move(b));
+  action.keep = false;
 }
 
 LayerAction LayerEditPlan::at_end_code(const SpliceContext& context) {

@@ -141,10 +141,8 @@ void Subdivider::line(const TrackedLine& t, Emitter& out) {
 }
 
 bool Subdivider::plan_move(const TrackedLine& t, Plan& plan) {
-  const RawLine& raw = t.raw;
   const Line& line = t.line;
   const Move& move = t.move;
-  const MachineState& after = t.state;
   bool arc = move.kind == MoveKind::Arc;
   if (move.ignored) return false;
   if (arc ? !options_.split_arcs : move.xy_length <= 0) return false;  // pure Z or E moves stay whole
@@ -154,7 +152,39 @@ bool Subdivider::plan_move(const TrackedLine& t, Plan& plan) {
   if (!arc && !(move.length > limit && limit > 0)) return false;
   // A numbered or checksummed line cannot be cut without breaking its checksum.
   if (line.has_line_number || line.has_checksum || line.command.size() > 16) return false;
+  if (!plan_axes(t, plan) || !plan_words(t, plan)) return false;
+  int finest = plan_decimals(t, plan);
+  if (finest < 0) return false;
 
+  // Rounding each written point moves it by up to half a unit per axis; keep
+  // that much below the limit so the written pieces stay within it.
+  double scale = t.state.inches ? kInch : 1.0;
+  double slack = 1.8 / kPow10[finest] * scale;
+  double effective = limit - slack;
+  if (effective < limit / 2) effective = limit / 2;
+
+  double pieces = 1;
+  if (arc) {
+    pieces = plan_arc(t, plan, limit, effective);
+    if (pieces < 0) return false;
+  } else {
+    pieces = std::ceil(move.length / effective);
+    plan.command = line.command;
+  }
+  if (!(pieces <= kMaxPieces)) {
+    warn(t.raw.number, "move too long to cut into pieces; passed through unchanged");
+    return false;
+  }
+  plan.pieces = pieces < 1 ? 1 : static_cast<std::uint64_t>(pieces);
+  if (rate_won) warn_rate_once(t, limit);
+  return true;
+}
+
+// Where each axis starts and ends, in the file's units; false (with a
+// warning) for a coordinate no printer has.
+bool Subdivider::plan_axes(const TrackedLine& t, Plan& plan) {
+  const Move& move = t.move;
+  const MachineState& after = t.state;
   double scale = after.inches ? kInch : 1.0;
   for (int a = 0; a < 4; ++a) {
     AxisPlan& p = plan.axes[static_cast<std::size_t>(a)];
@@ -163,11 +193,18 @@ bool Subdivider::plan_move(const TrackedLine& t, Plan& plan) {
     p.end = move.end[a] / scale;
     if (!std::isfinite(p.start) || !std::isfinite(p.end) || std::fabs(p.start) > kMaxCoordinate ||
         std::fabs(p.end) > kMaxCoordinate) {
-      warn(raw.number, "a coordinate out of any printer's range; move passed through unchanged");
+      warn(t.raw.number, "a coordinate out of any printer's range; move passed through unchanged");
       return false;
     }
   }
-  for (const Word& w : line) {
+  return true;
+}
+
+// The words the pieces write, in the input's order; false for a word that
+// is not ours to cut or a letter written twice.
+bool Subdivider::plan_words(const TrackedLine& t, Plan& plan) {
+  const bool arc = t.move.kind == MoveKind::Arc;
+  for (const Word& w : t.line) {
     if (!w.has_value) return false;
     // P: Marlin's extra turns, cut like the rest of the sweep.
     if (arc && (w.letter == 'I' || w.letter == 'J' || w.letter == 'R' || w.letter == 'P')) continue;
@@ -184,7 +221,14 @@ bool Subdivider::plan_move(const TrackedLine& t, Plan& plan) {
     p.write = true;
     p.raw = w.raw;
   }
-  int inch_digits = after.inches ? 2 : 0;  // 0.001 in is 0.025 mm: too coarse for a point on the line
+  return true;
+}
+
+// Each axis's decimals and a relative axis's amount; returns the finest
+// decimals of the written XYZ axes, or -1 when an amount is too large.
+int Subdivider::plan_decimals(const TrackedLine& t, Plan& plan) const {
+  const bool arc = t.move.kind == MoveKind::Arc;
+  int inch_digits = t.state.inches ? 2 : 0;  // 0.001 in is 0.025 mm: too coarse for a point on the line
   int finest = 9;
   for (int a = 0; a < 4; ++a) {
     AxisPlan& p = plan.axes[static_cast<std::size_t>(a)];
@@ -193,69 +237,60 @@ bool Subdivider::plan_move(const TrackedLine& t, Plan& plan) {
     if (!p.raw.empty()) d = std::max(d, decimals_of(p.raw) + inch_digits);
     p.decimals = std::min(d, 9);
     if (p.relative) {
-      double amount = p.raw.empty() ? 0.0 : line.value_or(letter, 0);
+      double amount = p.raw.empty() ? 0.0 : t.line.value_or(letter, 0);
       double units = amount * kPow10[p.decimals];
-      if (!(std::fabs(units) < 9e15)) return false;
+      if (!(std::fabs(units) < 9e15)) return -1;
       p.total = to_scaled(amount, p.decimals);
     }
     if (a != kE && (p.write || arc)) finest = std::min(finest, p.decimals);
   }
+  return finest;
+}
 
-  // Rounding each written point moves it by up to half a unit per axis; keep
-  // that much below the limit so the written pieces stay within it.
-  double slack = 1.8 / kPow10[finest] * scale;
-  double effective = limit - slack;
-  if (effective < limit / 2) effective = limit / 2;
+// An arc's chords: how many (within the tolerance, and the length limit),
+// and the words each writes. -1 (with a warning) for an arc that is none.
+double Subdivider::plan_arc(const TrackedLine& t, Plan& plan, double limit, double effective) {
+  double scale = t.state.inches ? kInch : 1.0;
+  const AxisPlan& x = plan.axes[kX];
+  const AxisPlan& y = plan.axes[kY];
+  plan.geometry = make_arc(t.line, x.start, y.start, x.end, y.end);
+  if (!plan.geometry.valid || !std::isfinite(plan.geometry.radius) || plan.geometry.radius * scale > kMaxCoordinate) {
+    warn(t.raw.number, "not a valid arc; passed through unchanged");
+    return -1;
+  }
+  double sweep = std::fabs(plan.geometry.sweep);
+  double radius_mm = plan.geometry.radius * scale;
+  double dz = (plan.axes[kZ].end - plan.axes[kZ].start) * scale;
+  double length = std::hypot(radius_mm * sweep, dz);
+  // A chord of angle t deviates r(1 - cos(t/2)) from its arc; never more than a quarter turn.
+  double max_angle = kPi / 2;
+  if (options_.arc_tolerance < radius_mm)
+    max_angle = std::min(max_angle, 2 * std::acos(1 - options_.arc_tolerance / radius_mm));
+  double pieces = std::ceil(sweep / max_angle);
+  if (limit > 0) pieces = std::max(pieces, std::ceil(length / effective));
+  for (int a = 0; a < 2; ++a) plan.axes[static_cast<std::size_t>(a)].write = true;
+  plan.arc = true;
+  // Chords carry X and Y always, then whatever else the arc wrote.
+  std::array<char, 8> order{'X', 'Y'};
+  int n = 2;
+  for (int k = 0; k < plan.letters; ++k) {
+    char c = plan.order[static_cast<std::size_t>(k)];
+    if (c != 'X' && c != 'Y') order[static_cast<std::size_t>(n++)] = c;
+  }
+  plan.order = order;
+  plan.letters = n;
+  plan.command = "G1";
+  return pieces;
+}
 
-  double pieces = 1;
-  if (arc) {
-    const AxisPlan& x = plan.axes[kX];
-    const AxisPlan& y = plan.axes[kY];
-    plan.geometry = make_arc(line, x.start, y.start, x.end, y.end);
-    if (!plan.geometry.valid || !std::isfinite(plan.geometry.radius) ||
-        plan.geometry.radius * scale > kMaxCoordinate) {
-      warn(raw.number, "not a valid arc; passed through unchanged");
-      return false;
-    }
-    double sweep = std::fabs(plan.geometry.sweep);
-    double radius_mm = plan.geometry.radius * scale;
-    double dz = (plan.axes[kZ].end - plan.axes[kZ].start) * scale;
-    double length = std::hypot(radius_mm * sweep, dz);
-    // A chord of angle t deviates r(1 - cos(t/2)) from its arc; never more than a quarter turn.
-    double max_angle = kPi / 2;
-    if (options_.arc_tolerance < radius_mm)
-      max_angle = std::min(max_angle, 2 * std::acos(1 - options_.arc_tolerance / radius_mm));
-    pieces = std::ceil(sweep / max_angle);
-    if (limit > 0) pieces = std::max(pieces, std::ceil(length / effective));
-    for (int a = 0; a < 2; ++a) plan.axes[static_cast<std::size_t>(a)].write = true;
-    plan.arc = true;
-    // Chords carry X and Y always, then whatever else the arc wrote.
-    std::array<char, 8> order{'X', 'Y'};
-    int n = 2;
-    for (int k = 0; k < plan.letters; ++k) {
-      char c = plan.order[static_cast<std::size_t>(k)];
-      if (c != 'X' && c != 'Y') order[static_cast<std::size_t>(n++)] = c;
-    }
-    plan.order = order;
-    plan.letters = n;
-    plan.command = "G1";
-  } else {
-    pieces = std::ceil(move.length / effective);
-    plan.command = line.command;
-  }
-  if (!(pieces <= kMaxPieces)) {
-    warn(raw.number, "move too long to cut into pieces; passed through unchanged");
-    return false;
-  }
-  plan.pieces = pieces < 1 ? 1 : static_cast<std::uint64_t>(pieces);
-  if (rate_won && !warned_rate_ && diagnostics_ != nullptr) {
-    warned_rate_ = true;
-    char buffer[kMaxNumberChars];
-    diagnostics_->warn(raw.number, "--max-rate asks for pieces of " + std::string(number_text(limit, 3, buffer)) +
-                                       " mm at F" + std::string(number_text(move.feedrate, 0, buffer)) +
+// --max-rate made the pieces longer than the limit asked: said once.
+void Subdivider::warn_rate_once(const TrackedLine& t, double limit) {
+  if (warned_rate_ || diagnostics_ == nullptr) return;
+  warned_rate_ = true;
+  char buffer[kMaxNumberChars];
+  diagnostics_->warn(t.raw.number, "--max-rate asks for pieces of " + std::string(number_text(limit, 3, buffer)) +
+                                       " mm at F" + std::string(number_text(t.move.feedrate, 0, buffer)) +
                                        ", longer than the limit; honouring the rate (warned once)");
-  }
-  return true;
 }
 
 void Subdivider::write_pieces(const TrackedLine& t, const Plan& plan, Emitter& out) {

@@ -128,6 +128,12 @@ class LayerEditPlan : public SplicePlan {
   };
 
   void after_layer(const SpliceContext& context, LayerAction& action);
+  // at_layer's steps.
+  void skip_layer(const LayerInfo& info, LayerAction& action);
+  double fill_scale(const LayerInfo& info);
+  int replacement_of(Replace& r, const LayerInfo& info);
+  void replace_layer(Replace& r, const LayerInfo& info, const SpliceContext& context, double scale,
+                     LayerAction& action);
   void check_placement(const SpliceFile& file, int below, const SpliceContext& context);
   Fixed z_of(double z) const;
 

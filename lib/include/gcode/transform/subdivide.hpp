@@ -80,7 +80,13 @@ class Subdivider : public Stage {
 
  private:
   struct Plan;
+  // plan_move's steps, in its order.
   bool plan_move(const TrackedLine& t, Plan& plan);
+  bool plan_axes(const TrackedLine& t, Plan& plan);
+  bool plan_words(const TrackedLine& t, Plan& plan);
+  int plan_decimals(const TrackedLine& t, Plan& plan) const;
+  double plan_arc(const TrackedLine& t, Plan& plan, double limit, double effective);
+  void warn_rate_once(const TrackedLine& t, double limit);
   void write_pieces(const TrackedLine& t, const Plan& plan, Emitter& out);
   void warn(std::uint64_t line_number, std::string_view message);
 
