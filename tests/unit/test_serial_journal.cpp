@@ -283,3 +283,18 @@ TEST_CASE("private paths: port names and the state folder", "[serial][journal]")
   REQUIRE(::stat((dir + "/a/b/c").c_str(), &st) == 0);
   CHECK((st.st_mode & 0777) == 0700);
 }
+
+TEST_CASE("journal fields: a count reads a whole number, and 0 where a damaged field holds none", "[serial][journal]") {
+  gcode::serial::JournalFields f;
+  f.set("line", "40");
+  f.set("huge", "99999999999999999999999");  // past 64 bits: no exception out of a reader
+  f.set("neg", "-3");
+  f.set("junk", "12x");
+  f.set("empty", "");
+  CHECK(f.count("line") == 40);
+  CHECK(f.count("huge") == 0);
+  CHECK(f.count("neg") == 0);
+  CHECK(f.count("junk") == 0);
+  CHECK(f.count("empty") == 0);
+  CHECK(f.count("missing") == 0);
+}

@@ -1,5 +1,7 @@
 #include "gcode/serial/journal_record.hpp"
 
+#include <charconv>
+
 #include <xxhash.h>
 
 #include <algorithm>
@@ -70,6 +72,14 @@ const std::string* JournalFields::find(std::string_view key) const {
   for (const auto& [k, v] : items_)
     if (k == key) return &v;
   return nullptr;
+}
+
+std::uint64_t JournalFields::count(std::string_view key) const {
+  const std::string* v = find(key);
+  std::uint64_t n = 0;
+  if (v == nullptr || v->empty()) return 0;
+  auto res = std::from_chars(v->data(), v->data() + v->size(), n);
+  return res.ec == std::errc() && res.ptr == v->data() + v->size() ? n : 0;
 }
 
 std::string JournalFields::get(std::string_view key, std::string_view otherwise) const {

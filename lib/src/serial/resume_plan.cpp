@@ -10,12 +10,6 @@ namespace gcode::serial {
 
 namespace {
 
-std::uint64_t number_or_zero(const JournalFields& f, std::string_view key) {
-  const std::string* v = f.find(key);
-  if (v == nullptr || v->empty() || v->find_first_not_of("0123456789") != std::string::npos) return 0;
-  return std::stoull(*v);
-}
-
 // Fills the plan's state and input position from entry `i`; false with a
 // refusal when the entry's fields do not read.
 bool take_entry(const JournalContents& journal, std::size_t i, ResumePlan& plan) {
@@ -26,9 +20,9 @@ bool take_entry(const JournalContents& journal, std::size_t i, ResumePlan& plan)
     return false;
   }
   plan.entry = i;
-  plan.input_line = number_or_zero(point, "line");
-  plan.input_offset = number_or_zero(point, "off");
-  plan.layer = static_cast<int>(number_or_zero(point, "layer"));
+  plan.input_line = point.count("line");
+  plan.input_offset = point.count("off");
+  plan.layer = static_cast<int>(point.count("layer"));
   plan.paused = point.get("paused") == "1";
   return true;
 }

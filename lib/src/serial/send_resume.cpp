@@ -11,12 +11,6 @@ namespace gcode::serial {
 
 namespace {
 
-std::uint64_t number_field(const JournalFields& f, std::string_view key) {
-  const std::string* v = f.find(key);
-  if (v == nullptr || v->empty() || v->find_first_not_of("0123456789") != std::string::npos) return 0;
-  return std::stoull(*v);
-}
-
 // A shell word: quoted only where it needs it.
 std::string shell_word(const std::string& s) {
   if (!s.empty() && s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789/._-+:,=@") ==
@@ -72,7 +66,7 @@ ResumeStart begin_resume(const ResumeSource& source, int port_fd, SendSession& s
                                   r.next - 1, r.point.get("state")));
   if (!r.point.get("swap").empty())
     throw ResumeError("cannot resume: the print had swapped to another file (a resume of a swap is not done yet)");
-  std::uint64_t hoff = number_field(r.point, "hoff");
+  std::uint64_t hoff = r.point.count("hoff");
   session.skip_printed(r.plan.input_offset, hoff, r.plan.input_line, r.plan.layer, r.plan.state);
   if (session.skipped_bytes() < r.plan.input_offset)
     throw ResumeError(fmt::format("cannot resume: the input ends after {} bytes, before the {} printed",

@@ -9,6 +9,7 @@
 // the middle. Values are escaped (%XX) where they hold a blank, '=', '#',
 // '%' or a control byte, so a path with spaces stays one field.
 #include <optional>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -23,6 +24,9 @@ class JournalFields {
   void set(std::string_view key, std::string value);
   const std::string* find(std::string_view key) const;
   std::string get(std::string_view key, std::string_view otherwise = {}) const;
+  // A field that holds a whole number >= 0; 0 when it is missing or not one
+  // (a damaged record must not throw out of a reader).
+  std::uint64_t count(std::string_view key) const;
   bool erase(std::string_view key);
   // The fields of `other` taken over (a delta applied to a snapshot).
   void update(const JournalFields& other);
