@@ -47,6 +47,10 @@ void add_send_options(Tool& tool, SendOptions& o) {
                  "the same path, open it again without a DTR reset and go on where the printer is (default 180; "
                  "0: stop at once)")
       ->type_name("SECONDS")->check(CLI::NonNegativeNumber)->group(link);
+  app.add_flag("--delta", o.delta,
+               "The printer is a delta (its towers home together, Z with them): a printer reset mid-print is not "
+               "resumed (the part is on the bed); gc-send stops and says how gc-relayer --resume-from-z finishes the "
+               "part")->group(link);
   app.add_flag("--list-ports", o.list_ports, "List candidate serial ports and exit")->group(link);
 
   const char* control = "Control";
@@ -135,6 +139,7 @@ void resolve_send_options(Tool& tool, SendOptions& o) {
   s.rx_buffer = o.rx_buffer;
   s.timeout = o.timeout;
   s.max_timeouts = o.max_timeouts;
+  s.home_xy_alone = !o.delta;
   s.max_line = static_cast<std::size_t>(o.max_line);
   s.max_line_from_firmware = app.count("--max-line") == 0;
   s.pace = !o.no_pace;

@@ -3,6 +3,7 @@
 // gc-send against it, and what the printer's log says it executed.
 #include <catch2/catch.hpp>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,21 @@
 #include "test_support.hpp"
 
 namespace gctest {
+
+// The first `lines` lines of a fixture cut into 0.2 mm pieces (as
+// gc-subdivide --max 0.2 makes them), made once per test run.
+inline const std::string& pieces_of(const std::string& fixture, int lines) {
+  static std::map<std::string, std::string> made;
+  std::string& path = made[fixture + ":" + std::to_string(lines)];
+  if (path.empty()) {
+    std::string p = temp_dir() + "/pieces.gcode";
+    auto r = run(quote(tool_path("gc-subdivide")) + " --max 0.2 " + quote(fixture_path(fixture)) + " | head -n " +
+                 std::to_string(lines) + " > " + quote(p));
+    REQUIRE(r.status == 0);
+    path = p;
+  }
+  return path;
+}
 
 struct PtyRun {
   RunResult result;

@@ -1,5 +1,6 @@
 #include "gcode/serial/journal_point.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cstdint>
 
@@ -178,6 +179,26 @@ bool read_machine_fields(const JournalFields& f, MachineState& s, std::string& p
   if (!r.ok()) return false;
   s = out;
   return true;
+}
+
+}  // namespace gcode::serial
+
+namespace gcode::serial {
+
+void write_track_fields(const ResumeTrack& track, long long restore, JournalFields& f) {
+  f.set("top", double_text(track.top_z));
+  f.set("retr", double_text(track.retracted));
+  f.set("prime", double_text(track.retraction));
+  f.set("restore", std::to_string(restore));
+}
+
+ResumeTrack read_track_fields(const JournalFields& f, const MachineState& state) {
+  ResumeTrack t;
+  if (!parse_double(f.get("top"), t.top_z)) t.top_z = state.position[kZ];
+  if (!parse_double(f.get("retr"), t.retracted)) t.retracted = 0;
+  if (!parse_double(f.get("prime"), t.retraction)) t.retraction = 0;
+  t.top_z = std::max(t.top_z, state.lifted ? state.lift_base_z : state.position[kZ]);
+  return t;
 }
 
 }  // namespace gcode::serial

@@ -77,18 +77,13 @@ class Exchange {
   std::string pending_;
 };
 
-bool is_greeting(std::string_view line) {
-  while (!line.empty() && line.front() == '\0') line.remove_prefix(1);
-  return line == "start" || line.find("External Reset") != std::string_view::npos;
-}
-
 }  // namespace
 
 ProbeResult probe_printer(int fd, double timeout, const std::function<void(std::string_view)>& trace) {
   ProbeResult r;
   Exchange x(fd, trace);
   auto note = [&r](std::string_view line) {
-    if (is_greeting(line)) r.greeted = true;
+    if (is_restart_line(line)) r.greeted = true;
     if (auto last = last_line_of(line)) {
       r.last_line = *last;
       r.answered = true;

@@ -95,6 +95,12 @@ void append_numbered_line(std::string& out, long long number, std::string_view c
   out += '\n';
 }
 
+std::string_view command_of_numbered(std::string_view wire) {
+  std::size_t space = wire.find(' ');
+  std::size_t star = wire.rfind('*');
+  return wire.substr(space + 1, star - space - 1);
+}
+
 ErrorClass classify_error(std::string_view m) {
   // Marlin: "checksum mismatch, Last Line: 5", "Line Number is not Last Line
   // Number+1, Last Line: 5", "No Checksum with line number, Last Line: 5",
@@ -114,8 +120,23 @@ ErrorClass classify_error(std::string_view m) {
   return ErrorClass::Recoverable;
 }
 
+bool is_reset_note(std::string_view text) {
+  static constexpr std::string_view kNotes[] = {"External Reset", "Watchdog Reset", "Brown out Reset",
+                                                "Software Reset", "Power-up"};
+  for (std::string_view note : kNotes)
+    if (contains_nocase(text, note)) return true;
+  return false;
+}
+
+bool is_restart_line(std::string_view line) {
+  Response r = parse_response(line);
+  return r.kind == ResponseKind::Start || (r.kind == ResponseKind::Echo && is_reset_note(r.text));
+}
+
 Response parse_response(std::string_view raw) {
   Response r;
+  // A board coming up may send a NUL before its greeting.
+  while (!raw.empty() && raw.front() == '\0') raw.remove_prefix(1);
   std::string_view s = trim(raw);
   r.text = s;
   if (s.empty()) return r;

@@ -1,5 +1,6 @@
 #include "gcode/serial/resume_plan.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -69,6 +70,9 @@ ResumePlan after_keep_running(const JournalContents& journal, const PrinterFindi
   return plan;
 }
 
+// The height the nozzle stands at after a state (a z-hop's lift left out).
+double nozzle_height(const MachineState& s) { return s.lifted ? s.lift_base_z : s.position[kZ]; }
+
 bool is_move(const MachineState& before, const MachineState& after) {
   return before.exact != after.exact;
 }
@@ -81,7 +85,10 @@ double distance(const MachineState& a, const MachineState& b) {
 
 ResumePlan after_reset(const JournalContents& journal, const ResumeLimits& limits, ResumePlan plan) {
   if (!limits.can_home_xy_alone) {
-    plan.refusal = "this printer cannot home X and Y without Z (a delta): a part stands on the bed";
+    MachineState last;
+    std::string problem;
+    read_machine_fields(journal.entries.back().point, last, problem);
+    plan.refusal = xy_homing_refusal(last.position[kZ], journal.header.get("regular") == "1" ? journal.header.get("input") : "-");
     return plan;
   }
   std::size_t acked = journal.acknowledged > 0 ? index_of(journal, journal.acknowledged) : std::string::npos;
@@ -93,17 +100,33 @@ ResumePlan after_reset(const JournalContents& journal, const ResumeLimits& limit
   MachineState after = plan.state, before;
   std::string problem;
   int moves = 0;
-  double mm = 0;
+  double mm = 0, z_high = nozzle_height(after);
   while (i > 0 && moves < limits.planner_blocks) {
+    if (std::uint64_t back = journal.entries[i].point.count("restore"); back != 0) {
+      // A line of an earlier resume after a reset: that resume starts again.
+      i = index_of(journal, back);
+      if (i == std::string::npos) {
+        plan.refusal = fmt::format("the journal no longer holds line {}, where an earlier resume went back to", back);
+        return plan;
+      }
+      break;
+    }
     if (!read_machine_fields(journal.entries[i - 1].point, before, problem)) break;
     if (is_move(before, after)) {
       ++moves;
       mm += distance(before, after);
+      z_high = std::max(z_high, nozzle_height(after));
     }
     after = before;
     --i;
   }
   if (!take_entry(journal, i, plan)) return plan;
+  plan.track = read_track_fields(journal.entries[i].point, plan.state);
+  if (plan.track.top_z <= 0) {
+    plan.refusal = "the printer reset before anything was printed: start the print again";
+    return plan;
+  }
+  if (z_high > nozzle_height(plan.state)) plan.nozzle_z = z_high;
   plan.redone_moves = moves;
   plan.redone_mm = mm;
   plan.possible = true;

@@ -212,6 +212,36 @@ int exit_status(const Sender& sender, const SendJob& job, const SendJournal* jou
   }
 }
 
+// The sender goes on where the resume plan says: the next line exactly, or
+// after a reset the resume sequence and the input from the first command
+// that may not have run.
+void go_on(Sender& sender, const ResumeStart& start, bool quiet) {
+  const ResumePlan& plan = start.plan;
+  if (plan.condition == PrinterCondition::KeptRunning) {
+    sender.continue_from(start.next, plan.state);
+    if (!quiet)
+      fmt::print(stderr,
+                 "gc-send: resuming: the printer kept running and took line {} last (input line {}, layer {}); on "
+                 "from input line {}\n",
+                 start.last, plan.input_line, plan.layer, plan.input_line + 1);
+    return;
+  }
+  ResetResume way{plan.state, plan.track.top_z, plan.nozzle_z, plan.track.retracted, plan.track.retraction};
+  std::vector<std::string> sequence;
+  try {
+    sequence = reset_resume_lines(way, Precision());
+  } catch (const std::invalid_argument& e) {
+    throw ResumeError(fmt::format("cannot resume: the printer reset and cannot be brought back: {}", e.what()));
+  }
+  sender.continue_after_reset(start.next - 1, start.last, plan.layer, sequence, plan.state, plan.track);
+  if (!quiet)
+    fmt::print(stderr,
+               "gc-send: resuming: the printer reset since the print stopped ({}); going back to input line {} "
+               "(layer {}): heating, Z declared, X and Y homed, {} moves ({:.1f} mm) may print twice\n",
+               start.greeted ? "it greeted again" : "its line numbers are back at 0", plan.input_line, plan.layer,
+               plan.redone_moves, plan.redone_mm);
+}
+
 }  // namespace
 
 int run_send_job(SendJob& job, Diagnostics& diag) {
@@ -261,18 +291,17 @@ int run_send_job(SendJob& job, Diagnostics& diag) {
   SendSession session(loop, sender, input.fd(), port.fd, diag,
                       job.layer_marker.empty() ? LayerMarkers() : LayerMarkers(job.layer_marker));
   if (resume) {
-    ResumeStart start = begin_resume(*resume, port.fd, session, std::max(30.0, config.timeout), trace_line);
-    sender.continue_from(start.next, start.plan.state);
+    ResumeLimits limits;
+    limits.can_home_xy_alone = config.home_xy_alone;
+    ResumeStart start = begin_resume(*resume, port.fd, session, std::max(30.0, config.timeout), limits, trace_line);
     journal = std::make_unique<SendJournal>(JournalOptions{.path = job.journal_path}, identify_input(name, input.fd()),
                                             job.port);
-    journal->continue_after(start.next - 1, start.point);
-    if (!job.quiet)
-      fmt::print(stderr,
-                 "gc-send: resuming: the printer kept running and took line {} last (input line {}, layer {}); on "
-                 "from input line {}\n",
-                 start.next - 1, start.plan.input_line, start.plan.layer, start.plan.input_line + 1);
+    journal->continue_after(start.last, start.point);
+    session.set_journal(journal.get());
+    go_on(sender, start, job.quiet);
+  } else if (journal) {
+    session.set_journal(journal.get());
   }
-  if (journal) session.set_journal(journal.get());
   PrintControlConfig control = job.control;
   // (A resumed stream is past its header: the park goes by the options.)
   if (job.park) control.park = job.park(resume && name == "-" ? PrintArea{} : session.read_print_area(), control.pause);

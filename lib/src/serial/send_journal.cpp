@@ -50,7 +50,8 @@ std::uint64_t SendJournal::offset_of(std::uint64_t line) const {
   return last_off_;
 }
 
-void SendJournal::numbered(long long n, std::uint64_t source_line, int layer, const MachineState& after) {
+void SendJournal::numbered(long long n, std::uint64_t source_line, int layer, const MachineState& after,
+                           const ResumeTrack& track, long long restore) {
   // Commands of the control's own (a pause block, a cancel's end) carry no
   // input line: they keep the position in the input of the line before.
   if (source_line != 0) {
@@ -69,6 +70,7 @@ void SendJournal::numbered(long long n, std::uint64_t source_line, int layer, co
   point_.set("paused", live_.paused ? "1" : "0");
   point_.set("swap", live_.swap);
   point_.set("swapline", std::to_string(live_.swap_line));
+  write_track_fields(track, restore, point_);
   writer_.sent(static_cast<std::uint64_t>(n), point_);
 }
 

@@ -1,5 +1,7 @@
 #include "gcode/serial/send_resume.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "gcode/serial/input_identity.hpp"
@@ -46,24 +48,29 @@ void check_resume_input(const ResumeSource& source, const std::string& name, int
 }
 
 ResumeStart begin_resume(const ResumeSource& source, int port_fd, SendSession& session, double timeout,
-                         const std::function<void(std::string_view)>& trace) {
+                         const ResumeLimits& limits, const std::function<void(std::string_view)>& trace) {
   ProbeResult probe = probe_printer(port_fd, timeout, trace);
   if (!probe.problem.empty()) throw ResumeError(fmt::format("cannot resume: {}", probe.problem));
-  if (probe.findings.condition == PrinterCondition::Reset)
-    throw ResumeError(fmt::format("cannot resume: the printer reset since the print stopped ({}); what was in its "
-                                  "buffers is lost",
-                                  probe.greeted ? "it greeted again" : "its line numbers are back at 0"));
   ResumeStart r;
-  r.plan = plan_resume(source.journal, probe.findings, ResumeLimits{});
+  r.greeted = probe.greeted;
+  r.plan = plan_resume(source.journal, probe.findings, limits);
   if (!r.plan.possible) throw ResumeError(fmt::format("cannot resume: {}", r.plan.refusal));
+  const JournalEntry& from = source.journal.entries[r.plan.entry];
+  r.last = static_cast<long long>(from.n);
+  r.point = from.point;
   r.next = probe.findings.expected_line;
-  r.point = source.journal.entries[r.plan.entry].point;
+  if (r.plan.condition == PrinterCondition::Reset) {
+    // Numbered on after every number the journal used: one names one command.
+    std::uint64_t highest = 0;
+    for (const JournalEntry& e : source.journal.entries) highest = std::max(highest, e.n);
+    r.next = static_cast<long long>(highest) + 1;
+  }
   if (r.plan.paused)
     throw ResumeError("cannot resume: the print was paused when it stopped (a resume into the pause is not done yet)");
   if (r.point.get("own") == "1")
     throw ResumeError(fmt::format("cannot resume: the printer stopped inside a block of gc-send's own (line {}, state "
                                   "{}), not at a line of the input",
-                                  r.next - 1, r.point.get("state")));
+                                  r.last, r.point.get("state")));
   if (!r.point.get("swap").empty())
     throw ResumeError("cannot resume: the print had swapped to another file (a resume of a swap is not done yet)");
   std::uint64_t hoff = r.point.count("hoff");

@@ -148,8 +148,8 @@ void SendSession::set_journal(SendJournal* journal) {
   journal_ = journal;
   if (journal_ == nullptr) return;
   sender_.set_journal_hooks(
-      [this](long long n, std::uint64_t source_line, int layer, const MachineState& after) {
-        journal_->numbered(n, source_line, layer, after);
+      [this](const Sender::Numbered& c) {
+        journal_->numbered(c.n, c.source_line, c.layer, *c.after, *c.track, c.restore);
       },
       [this](long long n) { journal_->acknowledged(n); });
   // At least once a second, whether or not anything else happens.

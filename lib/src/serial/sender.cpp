@@ -37,7 +37,7 @@ void Sender::start(double now) {
     state_ = SenderState::Handshake;
     // Unnumbered: Marlin only checks numbers on lines that start with N, and
     // M110 N0 makes the next numbered line N1.
-    send_unnumbered("M110 N0", false, false);
+    send_unnumbered(handshake_line(), false, false);
   } else if (continuing_) {
     // A resume: the numbering stays, the capabilities (and a simulated
     // printer's time scale) are asked again.
@@ -55,6 +55,7 @@ void Sender::continue_from(long long next, const MachineState& printer) {
   last_acked_.number = next - 1;
   machine_ = printer;
   continuing_ = true;
+  first_held_ = last_enqueued_ = next;
 }
 
 void Sender::grow_ring() {
@@ -119,7 +120,8 @@ void Sender::enqueue(std::string_view command, std::uint64_t source_line, int la
   s.temperature_query = line.is_m(105);
   Move move = machine_.apply(line);
   s.at = {machine_.position[kX], machine_.position[kY], machine_.position[kZ]};
-  if (on_numbered_) on_numbered_(next_number_, source_line, layer, machine_);
+  track(s, line, move);
+  if (on_numbered_) on_numbered_({next_number_, source_line, layer, &machine_, &track_, restoring_});
   // Until the estimator's time is final (16 moves later), length / feed rate.
   s.motion = 0;
   s.motion_final = false;
@@ -139,16 +141,12 @@ std::size_t Sender::withdraw_unsent(std::size_t max, const MachineState& before,
   if (final_queued_ || cancelled_) return 0;
   std::size_t n = std::min(max, pending());
   if (n == 0) return 0;
-  for (long long k = next_number_ - static_cast<long long>(n); k < next_number_; ++k) {
-    // "N12 G1 X1*34\n" -> "G1 X1"
-    std::string_view wire = slot(k).wire;
-    std::size_t space = wire.find(' ');
-    std::size_t star = wire.rfind('*');
-    commands.emplace_back(wire.substr(space + 1, star - space - 1));
-  }
+  for (long long k = next_number_ - static_cast<long long>(n); k < next_number_; ++k)
+    commands.emplace_back(command_of_numbered(slot(k).wire));
   next_number_ -= static_cast<long long>(n);
   // The estimator has seen them: their times are only estimates anyway.
   machine_ = before;
+  took_back();
   return n;
 }
 
@@ -156,6 +154,7 @@ std::size_t Sender::discard_unsent() {
   if (final_queued_ || cancelled_) return 0;
   std::size_t n = pending();
   next_number_ = next_send_;
+  took_back();
   return n;
 }
 
@@ -443,8 +442,12 @@ void Sender::on_line(std::string_view text, double now) {
       }
       break;
     case ResponseKind::Capability: on_capability(r.text); break;
-    case ResponseKind::Start: on_start(); break;
-    case ResponseKind::Echo: log(LogLevel::Info, 0, fmt::format("printer: {}", r.text)); break;
+    case ResponseKind::Start: on_start(r.text, now); break;
+    case ResponseKind::Echo:
+      log(LogLevel::Info, 0, fmt::format("printer: {}", r.text));
+      // Marlin's boot after the reset pin ("start" may have been lost).
+      if (is_reset_note(r.text)) on_start(r.text, now);
+      break;
     case ResponseKind::Wait:
       // Marlin (NO_TIMEOUTS) and Repetier say "wait" when their queue and
       // buffer are empty: a line still believed in flight lost its answer.
@@ -494,13 +497,15 @@ void Sender::on_action(std::string_view action) {
 }
 
 // The greeting after a reset: during the handshake, a board that was still
-// booting; while printing, the print is lost.
-void Sender::on_start() {
+// booting (or a greeting said twice); while printing, a reset that lost
+// what the printer had queued: the print goes back to the last command
+// that surely ran (sender_reset.cpp).
+void Sender::on_start(std::string_view text, double now) {
   if (state_ == SenderState::Handshake) {
-    send_unnumbered("M110 N0", false, false);
+    send_unnumbered(handshake_line(), false, false);
   } else if (state_ == SenderState::Printing) {
-    fail(fmt::format("the printer restarted (it said \"start\"){}; last acknowledged: {}",
-                     relink_ != Relink::None ? " while its port was away" : "", describe(last_acked_)));
+    printer_reset(fmt::format("it said \"{}\"{}", text, relink_ != Relink::None ? " while its port was away" : ""),
+                  now);
   }
 }
 
@@ -650,7 +655,7 @@ void Sender::handshake_timer(double now) {
   }
   if (now >= handshake_retry_ + std::min(1.0, config_.timeout / 3)) {
     handshake_retry_ = now;
-    send_unnumbered(state_ == SenderState::Handshake ? "M110 N0" : "M115", false, false);
+    send_unnumbered(state_ == SenderState::Handshake ? handshake_line() : std::string("M115"), false, false);
   }
 }
 
@@ -664,6 +669,7 @@ void Sender::cancel() {
   cancelled_ = true;
   input_done_ = true;
   next_number_ = next_send_;  // drop what was not sent yet
+  took_back();
   check_done(0);
 }
 

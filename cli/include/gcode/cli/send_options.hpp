@@ -29,6 +29,7 @@ struct SendOptions {
   std::string cancel_gcode;
   bool no_pace = false;
   bool list_ports = false;
+  bool delta = false;       // --delta: no resume after a reset
   double interval = 5;
 };
 

@@ -14,10 +14,15 @@
 //   hot bed fan      heater targets (hot: per tool, "215,0"), fan 0..255
 //   m220 m220b m221  speed factor %, its M220 B backup, flow factor % (M221 S)
 //   lift liftz       a z-hop is up (0/1), the Z it lifted from
+//
+// And for a resume after a reset (reset_sequence.hpp's ResumeTrack):
+//   top retr prime   the highest Z extruded at, mm retracted, the longest retraction
+//   restore          a line of such a resume: the n of the command it goes back to (0: none)
 #include <string>
 
 #include "gcode/core/machine_state.hpp"
 #include "gcode/serial/journal_record.hpp"
+#include "gcode/serial/reset_sequence.hpp"
 
 namespace gcode::serial {
 
@@ -26,5 +31,10 @@ void write_machine_fields(const MachineState& state, JournalFields& fields);
 // Fills `state` from `fields`; false (with `problem` naming the field) when
 // one is missing or does not read as its kind.
 bool read_machine_fields(const JournalFields& fields, MachineState& state, std::string& problem);
+
+void write_track_fields(const ResumeTrack& track, long long restore, JournalFields& fields);
+// A journal written before these fields reads as nothing extruded higher
+// than the state's own Z, nothing retracted, no resume line.
+ResumeTrack read_track_fields(const JournalFields& fields, const MachineState& state);
 
 }  // namespace gcode::serial

@@ -20,6 +20,8 @@ std::uint8_t checksum(std::string_view text);
 
 // Appends "N<number> <command>*<checksum>\n" to `out`.
 void append_numbered_line(std::string& out, long long number, std::string_view command);
+// The command of such a line: "N12 G1 X1*34\n" -> "G1 X1".
+std::string_view command_of_numbered(std::string_view wire);
 
 enum class ResponseKind : std::uint8_t {
   Empty,        // a blank line
@@ -56,6 +58,11 @@ struct Response {
 // Classifies one received line (without its ending). Never fails: anything
 // not recognised is Unknown, and the caller logs it.
 Response parse_response(std::string_view line);
+// Whether a line says the board has just restarted: its greeting ("start",
+// or "\0start" from the byte a USB chip sends as it comes up) or Marlin's
+// boot note of why ("echo: External Reset", "Watchdog Reset", ...).
+bool is_restart_line(std::string_view line);
+bool is_reset_note(std::string_view text);
 
 ErrorClass classify_error(std::string_view message);
 

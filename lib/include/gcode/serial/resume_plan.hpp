@@ -17,14 +17,17 @@
 //    acknowledged moves only the newest `planner_blocks` may not have run:
 //    the print goes on from the oldest of them (some millimetres printed
 //    twice, which the plan counts), after a resume sequence that heats,
-//    homes X and Y only and sets Z and E from the journal.
+//    homes X and Y only and sets Z and E from the journal. The lines of an
+//    earlier such resume (field restore) go back to where it went.
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 
 #include "gcode/core/machine_state.hpp"
 #include "gcode/serial/journal.hpp"
 #include "gcode/serial/printer_report.hpp"
+#include "gcode/serial/reset_sequence.hpp"
 
 namespace gcode::serial {
 
@@ -54,6 +57,10 @@ struct ResumePlan {
   bool paused = false;             // the print was paused: resume into the pause
   int redone_moves = 0;            // Reset: moves that may print twice
   double redone_mm = 0;            // ... and their length
+  ResumeTrack track;               // Reset: the print up to the entry (top, retraction)
+  // Reset: the highest Z the nozzle may stand at (it stopped after one of
+  // the moves that may print twice); NaN: the state's own Z.
+  double nozzle_z = std::numeric_limits<double>::quiet_NaN();
 };
 
 ResumePlan plan_resume(const JournalContents& journal, const PrinterFindings& printer, const ResumeLimits& limits);

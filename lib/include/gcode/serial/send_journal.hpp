@@ -15,6 +15,7 @@
 #include "gcode/core/machine_state.hpp"
 #include "gcode/serial/input_identity.hpp"
 #include "gcode/serial/journal.hpp"
+#include "gcode/serial/reset_sequence.hpp"
 
 namespace gcode::serial {
 
@@ -44,7 +45,10 @@ class SendJournal {
   void live(const LiveControl& live) { live_ = live; }
 
   // The sender's hooks.
-  void numbered(long long n, std::uint64_t source_line, int layer, const MachineState& after);
+  // `track` and `restore`: what a resume after a reset needs (the fields
+  // top, retr, prime and restore; sender.hpp's Numbered).
+  void numbered(long long n, std::uint64_t source_line, int layer, const MachineState& after, const ResumeTrack& track,
+                long long restore);
   void acknowledged(long long n) { acked_ = n; }
 
   void flush(double now);

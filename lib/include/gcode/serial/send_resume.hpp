@@ -37,14 +37,18 @@ void check_resume_input(const ResumeSource& source, const std::string& name, int
 
 struct ResumeStart {
   ResumePlan plan;
-  long long next = 0;      // the protocol line the printer expects next
-  JournalFields point;     // the journal's record of the line before it
+  long long next = 0;      // the protocol line numbered next (kept running: the one the printer expects)
+  long long last = 0;      // the journal's number of the command the print goes on after
+  JournalFields point;     // the journal's record of it
+  bool greeted = false;    // a reset: the printer greeted (else its line numbers were back at 0)
 };
 
 // Asks the printer on `port_fd`, plans, and skips the printed part of the
 // input in `session` (its hash checked). `timeout`: seconds for each answer.
+// A printer that reset goes on from the plan's command (ResumePlan): the
+// caller sends the resume sequence first.
 ResumeStart begin_resume(const ResumeSource& source, int port_fd, SendSession& session, double timeout,
-                         const std::function<void(std::string_view)>& trace);
+                         const ResumeLimits& limits, const std::function<void(std::string_view)>& trace);
 
 // The one command that resumes a print that stopped with the part on the bed.
 std::string resume_command(const std::string& journal, const std::string& input, const std::string& port);

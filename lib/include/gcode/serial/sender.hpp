@@ -30,6 +30,7 @@
 #include "gcode/serial/probe_backoff.hpp"
 #include "gcode/serial/protocol.hpp"
 #include "gcode/serial/resend.hpp"
+#include "gcode/serial/reset_sequence.hpp"
 
 namespace gcode::serial {
 
@@ -55,6 +56,10 @@ struct SenderConfig {
   // (background.md §1: 16 x 0.2 mm), and the printer still never waits for a line.
   bool pace = false;
   bool handshake = true;     // M110 N0 + M115 before the first line
+  // After a reset the print goes on with X and Y homed alone (never Z: the
+  // part is on the bed). False: a delta, which homes every tower at once:
+  // the print stops and says how gc-relayer --resume-from-z finishes it.
+  bool home_xy_alone = true;
   bool finish_with_m400 = true;
 };
 
@@ -84,6 +89,9 @@ struct SenderStats {
   std::uint64_t stray_oks = 0;           // an ok that answers for nothing in flight
   std::uint64_t shortened = 0;           // M117/M118 texts cut to fit
   std::uint64_t skipped = 0;             // lines left out (skip_bad_lines)
+  std::uint64_t resets = 0;              // printer resets the print came back from
+  std::uint64_t redone_moves = 0;        // moves sent again after them (they may print twice)
+  double redone_mm = 0;                  // ... their length
   double print_start = -1;               // when the first numbered line went out
   double print_end = -1;                 // when the last ok came back
 };
@@ -152,7 +160,15 @@ class Sender : private TimeSink {
   // The journal's hooks (send_journal.hpp): a command got its number, with
   // the machine state after it (called before its bytes can go out); the
   // printer acknowledged a numbered line.
-  using NumberedHook = std::function<void(long long n, std::uint64_t source_line, int layer, const MachineState& after)>;
+  struct Numbered {
+    long long n = 0;
+    std::uint64_t source_line = 0;  // 0: a line of gc-send's own
+    int layer = 0;
+    const MachineState* after = nullptr;
+    const ResumeTrack* track = nullptr;  // the print up to it, for a resume after a reset
+    long long restore = 0;  // a line of such a resume: the command it goes back to (else 0)
+  };
+  using NumberedHook = std::function<void(const Numbered&)>;
   using AcknowledgedHook = std::function<void(long long n)>;
   void set_journal_hooks(NumberedHook numbered, AcknowledgedHook acknowledged) {
     on_numbered_ = std::move(numbered);
@@ -163,6 +179,13 @@ class Sender : private TimeSink {
   // handshake off: M110 N0 would throw away the numbering it goes on with
   // (M115 is still asked).
   void continue_from(long long next, const MachineState& printer);
+  // A resume after the printer reset (gc-send --resume, the journal's
+  // resume plan): before start(), numbered on from `last_number` (M110 N
+  // that), the lines that bring it back to the print (reset_sequence.hpp)
+  // go out first, as going back to command `restore`; the input follows.
+  void continue_after_reset(long long last_number, long long restore, int layer,
+                            const std::vector<std::string>& sequence, const MachineState& target,
+                            const ResumeTrack& track);
   // Nothing waits to be sent and nothing is in flight.
   bool idle() const { return pending() == 0 && flight_.empty() && output().empty(); }
   // The number the last submitted command got (0: none yet).
@@ -233,6 +256,12 @@ class Sender : private TimeSink {
     double nominal = 0;          // length / feed rate: no move takes less
     bool motion_final = false;
     std::array<double, 3> at{};  // X Y Z after it (what M114 says once it has run)
+    // For a resume after a reset (sender_reset.cpp):
+    bool drains = false;         // M400, G28, G4: its ok comes once every move before it ran
+    long long prev = 0;          // the command before it in the print (n - 1 but after a reset)
+    long long restore = 0;       // a line of a reset's resume: the command it goes back to
+    MachineState after;          // the machine after it
+    ResumeTrack track;           // the print up to it
   };
   Slot& slot(long long n) { return ring_[static_cast<std::size_t>(n) & (ring_.size() - 1)]; }
   const Slot& slot(long long n) const { return ring_[static_cast<std::size_t>(n) & (ring_.size() - 1)]; }
@@ -250,7 +279,7 @@ class Sender : private TimeSink {
   void on_resend(long long n, double now);
   void on_error(const Response& r, double now);
   void on_action(std::string_view action);
-  void on_start();
+  void on_start(std::string_view text, double now);
   void on_capability(std::string_view text);
   void note_temperatures(const Response& r, std::string_view text);
   void set_link(double bytes_per_second, double time_scale);
@@ -269,6 +298,16 @@ class Sender : private TimeSink {
   void relocate(long long expected, double now);
   bool check_position(std::string_view text, double now);
   void relink_ok(double now);
+  void printer_reset(std::string_view how, double now);
+  long long surely_ran() const;
+  bool in_history(long long n) const {
+    return n >= std::max(first_held_, next_send_ - kHistory) && n < next_number_;
+  }
+  void resubmit_after_reset(long long restore, const std::vector<std::string>& sequence);
+  void restart_handshake(double now);
+  std::string handshake_line() const;
+  void track(Slot& s, const Line& line, const Move& move);
+  void took_back();
 
   SenderConfig config_;
   Logger log_;
@@ -313,6 +352,13 @@ class Sender : private TimeSink {
   double relink_since_ = 0;
   long long relink_line_ = 0;    // the last line the printer says it took
   bool position_asked_ = false;
+
+  // A reset's resume (sender_reset.cpp): what the print has done so far.
+  long long handshake_number_ = 0;  // M110 N this: the line before the next one numbered
+  long long last_enqueued_ = 0;     // the newest command in the print's order
+  ResumeTrack track_;               // the print as numbered so far
+  long long first_held_ = 1;        // the oldest number this sender numbered itself
+  long long restoring_ = 0;         // numbering a resume's lines: the command they go back to
 
   Position last_acked_;
   FirmwareInfo firmware_;

@@ -1,0 +1,115 @@
+// gc-send against gc-virtual-printer resetting mid-print (its greeting in
+// each form, at chosen moments, after a reconnect, while paused): the print
+// comes back with the resume sequence and finishes. The printer's executed
+// log across the sessions holds every input command once, except the re-run
+// after the reset, at most what the printer buffers (its planner's 16 moves
+// and its queue's 4 commands); no Z homing after the
+// first layer; every X/Y move of the sequence above what was printed; bed
+// and hot end at their targets before anything is extruded; the re-run
+// moves end where they did the first time, E included. A delta is refused
+// with the gc-relayer recipe, nothing more sent.
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "pty_run.hpp"
+#include "reset_check.hpp"
+#include "test_support.hpp"
+
+using gctest::PtyRun;
+using gctest::quote;
+using gctest::require_resumed;
+using gctest::send_through_pty;
+
+namespace {
+
+// The first 9000 lines of a real slicer file (relative E, z-hop) cut into
+// 0.2 mm pieces: the start code, layer 1 and the start of layer 2.
+const std::string& pieces_file() { return gctest::pieces_of("prusa_cube_0.2_mk3s_rel_zhop.gcode", 9000); }
+
+// Absolute E (a G92 E must put E back exactly), Cura's 5 mm retractions.
+const std::string& absolute_file() { return gctest::pieces_of("cura_cube_0.2_abs_zhop_skirt.gcode", 6000); }
+
+const std::string kPrinter = "--time-scale 200 --heat-rate 1000 ";
+
+}  // namespace
+
+TEST_CASE("gc-send: a printer reset mid-layer, at a layer change or in the start code comes back and finishes",
+          "[gc-send][reset]") {
+  auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
+  struct Moment {
+    const char* fault;
+    const char* says;
+  };
+  for (Moment m : {Moment{"reset@line=3000", "going back to line "}, Moment{"reset@layer=2", "going back to line "},
+                   Moment{"reset@line=4", "before anything was printed; starting the print again"}}) {
+    PtyRun r = send_through_pty(pieces_file(), "--no-journal", kPrinter + "--fault " + m.fault);
+    INFO(m.fault << ": " << r.result.err);
+    REQUIRE(r.result.status == 0);
+    CHECK(r.result.err.find("the printer reset (it said \"start\")") != std::string::npos);
+    CHECK(r.result.err.find(m.says) != std::string::npos);
+    gctest::ResetFigures f = require_resumed(r.log_text, expected);
+    CHECK(f.resets == 1);
+    if (std::string(m.fault) != "reset@line=4") {
+      CHECK(r.result.err.find("may print twice") != std::string::npos);
+      CHECK(f.redone_moves > 0);
+    }
+  }
+}
+
+TEST_CASE("gc-send: each form of the greeting is a reset; an absolute-E print gets its E back exactly",
+          "[gc-send][reset]") {
+  auto expected = gctest::commands_of(gctest::read_file(absolute_file()));
+  for (const char* greeting : {"nul", "twice", "external"}) {
+    PtyRun r = send_through_pty(absolute_file(), "--no-journal",
+                                kPrinter + "--greeting " + greeting + " --fault reset@line=4000");
+    INFO(greeting << ": " << r.result.err);
+    REQUIRE(r.result.status == 0);
+    gctest::ResetFigures f = require_resumed(r.log_text, expected);
+    CHECK(f.redone_moves > 0);
+    CHECK(f.redone_mm < 20 * 0.2 + 1e-6);
+  }
+}
+
+TEST_CASE("gc-send: a printer that restarted while its port was away comes back after the reconnect",
+          "[gc-send][reset][reconnect]") {
+  auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
+  PtyRun r = send_through_pty(pieces_file(), "--no-journal --reconnect 30", kPrinter + "--fault drop-reset=50@line=2000");
+  INFO(r.result.err);
+  REQUIRE(r.result.status == 0);
+  CHECK(r.result.err.find("lost the printer's port") != std::string::npos);
+  CHECK(r.result.err.find("while its port was away") != std::string::npos);
+  CHECK(require_resumed(r.log_text, expected).resets == 1);
+}
+
+TEST_CASE("gc-send: a reset while paused resumes into the pause; the resume returns exactly", "[gc-send][reset][pause]") {
+  auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
+  std::string dir = gctest::temp_dir();
+  std::string status = dir + "/status.json", fifo = dir + "/control";
+  auto wait_for = [&](const std::string& state) {
+    return "for i in $(seq 1000); do grep -q '\"" + state + "\"' " + quote(status) +
+           " 2>/dev/null && break; sleep 0.01; done\n";
+  };
+  std::string during = "sleep 0.15; echo pause > " + quote(fifo) + "\n" + wait_for("paused") +
+                       "kill -USR1 $vp; sleep 0.3\n" + wait_for("paused") + "echo resume > " + quote(fifo);
+  PtyRun r = send_through_pty(pieces_file(),
+                              "--no-journal --rush 1 --status-file " + quote(status) + " --control " + quote(fifo) +
+                                  " --progress-interval 0.05",
+                              kPrinter, during);
+  INFO(r.result.err);
+  REQUIRE(r.result.status == 0);
+  CHECK(r.result.err.find("the printer reset") != std::string::npos);
+  require_resumed(r.log_text, expected, 20, true);
+}
+
+TEST_CASE("gc-send --delta: a reset stops the print with the gc-relayer recipe, nothing more sent",
+          "[gc-send][reset]") {
+  PtyRun r = send_through_pty(pieces_file(), "--no-journal --delta", kPrinter + "--fault reset@line=3000");
+  INFO(r.result.err);
+  CHECK(r.result.status == 1);
+  CHECK(r.result.err.find("cannot home X and Y without Z") != std::string::npos);
+  CHECK(r.result.err.find("gc-relayer --resume-from-z") != std::string::npos);
+  auto log = gctest::read_reset_log(r.log_text);
+  REQUIRE(log.sessions.size() == 2);
+  CHECK(log.sessions[1].empty());  // not a numbered line after the reset
+}
