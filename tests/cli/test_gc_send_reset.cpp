@@ -18,8 +18,10 @@
 
 using gctest::PtyRun;
 using gctest::quote;
+using gctest::run;
 using gctest::require_resumed;
 using gctest::send_through_pty;
+using gctest::tool_path;
 
 namespace {
 
@@ -112,4 +114,52 @@ TEST_CASE("gc-send --delta: a reset stops the print with the gc-relayer recipe, 
   auto log = gctest::read_reset_log(r.log_text);
   REQUIRE(log.sessions.size() == 2);
   CHECK(log.sessions[1].empty());  // not a numbered line after the reset
+}
+
+namespace {
+
+// gc-virtual-printer on a pty in `dir` (`$vp`), gc-send killed with SIGKILL
+// after `seconds`, then `then` (a shell script: $gs is what runs next).
+gctest::RunResult killed_then(const std::string& dir, const std::string& input, double seconds,
+                              const std::string& then) {
+  std::string port = dir + "/printer", journal = dir + "/print.journal";
+  std::string send = quote(tool_path("gc-send")) + " --port " + quote(port) + " --journal " + quote(journal);
+  std::string script =
+      quote(tool_path("gc-virtual-printer")) + " -q --time-scale 20 --heat-rate 1000 --link " + quote(port) +
+      " --log " + quote(dir + "/executed.log") + " & vp=$!\n" +
+      "for i in $(seq 500); do [ -e " + quote(port) + " ] && break; sleep 0.01; done\n" + send + " -q " +
+      quote(input) + " 2>/dev/null & gs=$!\nsleep " + std::to_string(seconds) + "\nkill -9 $gs; wait $gs 2>/dev/null\n" +
+      then + "\n" + send + " --resume " + quote(journal) + " " + quote(input) + " & gs=$!\n" +
+      "wait $gs; s=$?; kill $vp; wait $vp; exit $s";
+  return run(script);
+}
+
+}  // namespace
+
+TEST_CASE("gc-send --resume after kill -9 and a printer reset: back to the print, every command once but the re-run",
+          "[gc-send][reset][resume]") {
+  auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
+  std::string dir = gctest::temp_dir();
+  // The reset comes while the printer still drains what it took.
+  auto r = killed_then(dir, pieces_file(), 2, "kill -USR1 $vp; sleep 0.3");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.err.find("resuming: the printer reset since the print stopped (it greeted again); going back to input "
+                   "line ") != std::string::npos);
+  CHECK(r.err.find("may print twice") != std::string::npos);
+  CHECK(require_resumed(gctest::read_file(dir + "/executed.log"), expected).resets == 1);
+}
+
+TEST_CASE("gc-send --resume after kill -9, and the printer resets during the resumed print: it comes back again",
+          "[gc-send][reset][resume]") {
+  auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
+  std::string dir = gctest::temp_dir();
+  // (The resumed gc-send runs in the background meanwhile: `then` starts a
+  // subshell that resets the printer a second into it.)
+  auto r = killed_then(dir, pieces_file(), 1.5, "(sleep 1; kill -USR1 $vp) &");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.err.find("resuming: the printer kept running") != std::string::npos);
+  CHECK(r.err.find("the printer reset (it said \"start\")") != std::string::npos);
+  CHECK(require_resumed(gctest::read_file(dir + "/executed.log"), expected).resets == 1);
 }
