@@ -176,3 +176,56 @@ TEST_CASE("protocol: what each line of the answer to M115 says", "[serial][proto
   CHECK(real.time_scale == 0);  // a real firmware names neither
   CHECK(real.baud == 0);
 }
+
+TEST_CASE("protocol: Klipper's, Prusa's and RepRapFirmware's answers, and a greeting after a NUL", "[serial][protocol]") {
+  // Klipper (klippy/gcode.py): errors "!! ..." then ok; unknown commands
+  // and its state as "// ..." lines.
+  Response r = parse_response("!! Must home axis first: 0.000 200.000 19.960 [1357.946]");
+  CHECK(r.kind == ResponseKind::Error);
+  CHECK(r.error == ErrorClass::Recoverable);
+  r = parse_response("// Unknown command:\"M201\"");
+  CHECK(r.kind == ResponseKind::Echo);
+  CHECK(r.unknown_command);
+  CHECK(parse_response("echo:Unknown command: \"FOO\"").unknown_command);  // Marlin's
+  CHECK_FALSE(parse_response("echo:SD card ok").unknown_command);
+  r = parse_response("// Klipper state: Shutdown");
+  CHECK(r.kind == ResponseKind::Error);
+  CHECK(r.error == ErrorClass::Fatal);
+  CHECK(parse_response("// Klipper state: Ready").kind == ResponseKind::Echo);
+  CHECK(parse_response("!! Shutdown due to M112 command").error == ErrorClass::Fatal);
+  // Its M115 answer is an ok line; TIME_SCALE: is no temperature.
+  r = parse_response("ok FIRMWARE_NAME:Klipper FIRMWARE_VERSION:v0.12.0 TIME_SCALE:20 BAUD:250000");
+  CHECK(r.kind == ResponseKind::Ok);
+  CHECK_FALSE(r.has_temperature);
+  CHECK(parse_response("ok T:20.0 /0.0 B:20.0 /0.0").has_temperature);
+  CHECK(parse_response("ok T0:20.0 /0.0").has_temperature);
+  // Prusa-Firmware (messages.c): a blank after the slashes.
+  r = parse_response("// action:paused");
+  CHECK(r.kind == ResponseKind::Action);
+  CHECK(r.text == "paused");
+  CHECK(parse_response("//action:pause").text == "pause");
+  // RepRapFirmware: "rs n" asks for a line again; a heater fault stops.
+  r = parse_response("rs 12");
+  CHECK(r.kind == ResponseKind::Resend);
+  CHECK(r.line == 12);
+  CHECK(parse_response("Error: Heater 1 fault: temperature rising too slowly").error == ErrorClass::Fatal);
+  CHECK(parse_response("Error: G0/G1: insufficient axes homed").error == ErrorClass::Recoverable);
+  // A USB-serial chip's NUL before Marlin's greeting.
+  CHECK(parse_response(std::string("\0start", 6)).kind == ResponseKind::Start);
+}
+
+TEST_CASE("protocol: the firmware's name from Klipper's, Prusa's and RepRapFirmware's M115", "[serial][protocol]") {
+  FirmwareInfo k;
+  CHECK(read_capability("ok FIRMWARE_NAME:Klipper FIRMWARE_VERSION:v0.12.0-253-g1e3d9aaf", k).names_firmware);
+  CHECK(k.name == "Klipper");
+  FirmwareInfo p;
+  read_capability("FIRMWARE_NAME:Prusa-Firmware 3.13.3 based on Marlin FIRMWARE_URL:https://github.com/prusa3d/"
+                  "Prusa-Firmware PROTOCOL_VERSION:1.0 MACHINE_TYPE:Prusa i3 MK3S EXTRUDER_COUNT:1",
+                  p);
+  CHECK(p.name == "Prusa-Firmware 3.13.3 based on Marlin");
+  FirmwareInfo d;
+  read_capability("FIRMWARE_NAME: RepRapFirmware for Duet 3 MB6HC FIRMWARE_VERSION: 3.5.1 ELECTRONICS: Duet 3 MB6HC "
+                  "v1.01 FIRMWARE_DATE: 2024-04-19 14:39:52",
+                  d);
+  CHECK(d.name == "RepRapFirmware for Duet 3 MB6HC");
+}

@@ -17,7 +17,7 @@ int main(int argc, char** argv) {
   VirtualPrinterConfig c;
   gcode::cli::Tool tool(
       "gc-virtual-printer",
-      "gc-virtual-printer: a simulated Marlin printer on a pseudo-terminal. PATH becomes a symlink to the\n"
+      "gc-virtual-printer: a simulated printer (Marlin, Klipper, Prusa or RepRapFirmware) on a pseudo-terminal. PATH becomes a symlink to the\n"
       "pty; connect any host to it. It models the link's byte rate, the RX buffer (overruns lose bytes), the\n"
       "command queue, the planner, heating, Marlin's checksum/line-number errors and Resend replies, and can\n"
       "inject faults. Runs until interrupted:\n"
@@ -26,6 +26,15 @@ int main(int argc, char** argv) {
   app.add_option("--link", o.link, "Path of the symlink to create for the pseudo-terminal")
       ->type_name("PATH")
       ->required();
+  app.add_option("--firmware", c.firmware,
+                 "Whose replies and ways: marlin (default), klipper (its pseudo-terminal: line numbers ignored, "
+                 "'!!' errors, '// Unknown command'), prusa (M601 own pause, silent M600), rrf (RepRapFirmware "
+                 "over USB)")
+      ->type_name("NAME");
+  app.add_option("--user-seconds", c.user_seconds,
+                 "How long the user at the printer takes to answer a wait for them (Prusa's M600, its own pause), "
+                 "in simulated seconds (default 5)")
+      ->type_name("S");
   app.add_option("--baud", c.baud, "Simulated link speed (default 250000)")->type_name("BAUD");
   app.add_option("--queue", c.queue, "Command queue entries, Marlin BUFSIZE (default 4)")->type_name("N");
   app.add_option("--rx-buffer", c.rx_buffer, "Serial receive buffer, RX_BUFFER_SIZE (default 128)")->type_name("BYTES");
@@ -67,14 +76,15 @@ int main(int argc, char** argv) {
   tool.check([&] {
     std::string opts;
     for (const std::string& f : faults) opts += f + ",";
-    parse_virtual_options(opts, c);
+    parse_virtual_options(opts + "firmware=" + c.firmware, c);
     c.greeting = parse_greeting_form(greeting);
     if (no_link_report) c.report_link = false;
     if (c.baud < 50 || c.queue < 1 || c.rx_buffer < 16 || c.max_line < 16 || c.planner < 1 || !(c.time_scale > 0) ||
-        !(c.speed_factor > 0) || !(o.drop_seconds >= 0))
+        !(c.speed_factor > 0) || !(o.drop_seconds >= 0) ||
+        !(c.user_seconds >= 0))
       throw gcode::cli::UsageError(
-          "--baud, --queue, --rx-buffer, --max-line, --planner, --time-scale, --speed-factor and --drop-seconds "
-          "need sensible values");
+          "--baud, --queue, --rx-buffer, --max-line, --planner, --time-scale, --speed-factor, --drop-seconds and "
+          "--user-seconds need sensible values");
   });
   return tool.run(argc, argv, [&] { return run_virtual_printer(o, c); });
 }

@@ -27,9 +27,10 @@ constexpr CommandCode kMarlinInstant[] = {
     {'M', 221},
 };
 
-constexpr FirmwareFlavor marlin(std::string_view name, bool m220_backup_restore) {
+constexpr FirmwareFlavor marlin(std::string_view name, std::string_view reports_as, bool m220_backup_restore) {
   FirmwareFlavor f;
   f.name = name;
+  f.reports_as = reports_as;
   f.g90_g91_set_e_mode = true;
   f.m220_backup_restore = m220_backup_restore;
   f.m220_whole_percent = true;
@@ -38,11 +39,14 @@ constexpr FirmwareFlavor marlin(std::string_view name, bool m220_backup_restore)
   f.instant = kMarlinInstant;
   f.checks_line_numbers = true;
   f.advanced_ok_possible = true;
+  f.busy_keepalive = true;
+  f.ok_when_queued = false;
+  f.reports_own_pause = false;
   return f;
 }
 
-constexpr FirmwareFlavor kMarlin2 = marlin("marlin2", true);
-constexpr FirmwareFlavor kMarlin1 = marlin("marlin", false);
+constexpr FirmwareFlavor kMarlin2 = marlin("marlin2", "Marlin 2", true);
+constexpr FirmwareFlavor kMarlin1 = marlin("marlin", "Marlin 1", false);
 
 }  // namespace
 

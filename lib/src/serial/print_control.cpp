@@ -599,6 +599,9 @@ void PrintControl::action(std::string_view text) {
     resume();
   } else if (starts("cancel")) {
     cancel();
+  } else if (starts("paused") || starts("resumed")) {
+    // The printer's own pause (Prusa): the sender holds its lines meanwhile
+    // and has said so.
   } else {
     diag_.info(fmt::format("printer action: {}", text));
   }

@@ -59,8 +59,11 @@ void parse_ok_fields(std::string_view rest, Response& r) {
     std::string_view token = rest.substr(start, i - start);
     if (token.size() < 2) continue;
     if (token.find(':') != std::string_view::npos) {
-      // "T:210.0", "B:60.0": a temperature report rides on this ok (M105).
-      if (token[0] == 'T' || token[0] == 'B') r.has_temperature = true;
+      // "T:210.0", "B:60.0", "T0:210.0": a temperature report rides on this
+      // ok (M105); not "TIME_SCALE:20" (Klipper's M115 answer is an ok line).
+      std::size_t k = 1;
+      while (k < token.size() && is_digit(token[k])) ++k;
+      if ((token[0] == 'T' || token[0] == 'B') && k < token.size() && token[k] == ':') r.has_temperature = true;
       continue;
     }
     long long v = -1;
@@ -70,6 +73,19 @@ void parse_ok_fields(std::string_view rest, Response& r) {
     if (token[0] == 'P') r.planner_free = static_cast<int>(v);
     if (token[0] == 'B') r.queue_free = static_cast<int>(v);
   }
+}
+
+// The value of FIRMWARE_NAME: up to the next " KEY:" (SOURCE_CODE_URL:,
+// FIRMWARE_URL:, FIRMWARE_VERSION:), blanks around it gone (RepRapFirmware
+// writes "FIRMWARE_NAME: RepRapFirmware for Duet 3 ...").
+std::string_view firmware_name(std::string_view rest) {
+  rest = trim(rest);
+  for (std::size_t i = rest.find(' '); i != std::string_view::npos; i = rest.find(' ', i + 1)) {
+    std::size_t k = i + 1;
+    while (k < rest.size() && ((rest[k] >= 'A' && rest[k] <= 'Z') || rest[k] == '_')) ++k;
+    if (k > i + 1 && k < rest.size() && rest[k] == ':') return trim(rest.substr(0, i));
+  }
+  return rest;
 }
 
 }  // namespace
@@ -112,10 +128,11 @@ ErrorClass classify_error(std::string_view m) {
   // Marlin's kill(): "Printer halted. kill() called!", "Printer stopped due to
   // errors. ... M999"; thermal protection: "Thermal Runaway", "MAXTEMP",
   // "MINTEMP", "Heating failed". Klipper: "Shutdown", "MCU ... shutdown".
+  // RepRapFirmware: "Heater 1 fault: ...".
   if (contains_nocase(m, "halted") || contains_nocase(m, "kill()") || contains_nocase(m, "killed") ||
       contains_nocase(m, "stopped") || contains_nocase(m, "thermal runaway") || contains_nocase(m, "maxtemp") ||
       contains_nocase(m, "mintemp") || contains_nocase(m, "heating failed") || contains_nocase(m, "shutdown") ||
-      contains_nocase(m, "emergency"))
+      contains_nocase(m, "emergency") || (contains_nocase(m, "heater") && contains_nocase(m, "fault")))
     return ErrorClass::Fatal;
   return ErrorClass::Recoverable;
 }
@@ -169,16 +186,21 @@ Response parse_response(std::string_view raw) {
     r.text = trim(body.substr(5));
     return r;
   }
-  if (starts_with_nocase(s, "//action:")) {
+  // Marlin's "//action:pause", Prusa's "// action:paused".
+  if (starts_with_nocase(s, "//") && starts_with_nocase(trim(s.substr(2)), "action:")) {
     r.kind = ResponseKind::Action;
-    r.text = trim(s.substr(9));
+    r.text = trim(trim(s.substr(2)).substr(7));
     return r;
   }
   if (body.data() != s.data() || starts_with_nocase(s, "//")) {
     r.kind = ResponseKind::Echo;
     r.text = body.data() != s.data() ? body : trim(s.substr(2));
-    // A fatal condition may also arrive as an echo on some firmware versions.
-    if (contains_nocase(r.text, "kill()") || contains_nocase(r.text, "printer halted")) {
+    // Marlin's 'echo:Unknown command: "M123"', Klipper's '// Unknown command:"M123"'.
+    r.unknown_command = starts_with_nocase(r.text, "unknown command");
+    // A fatal condition may also arrive as an echo on some firmware versions,
+    // and Klipper announces its shutdown so ("// Klipper state: Shutdown").
+    if (contains_nocase(r.text, "kill()") || contains_nocase(r.text, "printer halted") ||
+        contains_nocase(r.text, "state: shutdown")) {
       r.kind = ResponseKind::Error;
       r.error = ErrorClass::Fatal;
     }
@@ -251,10 +273,12 @@ CapabilityLine read_capability(std::string_view text, FirmwareInfo& info) {
     std::string key = "Cap:" + std::string(name) + ":1";
     return text.find(key) != std::string_view::npos;
   };
+  // Klipper answers on its ok line: "ok FIRMWARE_NAME:Klipper FIRMWARE_VERSION:...".
+  text = trim(text);
+  if (text.rfind("ok ", 0) == 0) text = trim(text.substr(3));
   if (text.rfind("FIRMWARE_NAME:", 0) == 0) {
     said.names_firmware = true;
-    std::size_t end = text.find(" SOURCE_CODE_URL");
-    info.name = std::string(text.substr(14, end == std::string_view::npos ? std::string_view::npos : end - 14));
+    info.name = std::string(firmware_name(text.substr(14)));
     auto number_after = [&](std::string_view key) {
       std::size_t p = text.find(key);
       if (p == std::string_view::npos) return 0.0;

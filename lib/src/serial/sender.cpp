@@ -116,6 +116,7 @@ void Sender::enqueue(std::string_view command, std::uint64_t source_line, int la
   s.layer = layer;
   Line line = Line::parse(command);
   s.unbounded = config_.firmware->is_unbounded(line);
+  s.silent_wait = config_.firmware->waits_silently(line);
   s.long_running = config_.firmware->is_long_running(line);
   s.temperature_query = line.is_m(105);
   Move move = machine_.apply(line);
@@ -216,7 +217,7 @@ bool Sender::settled(double now) const {
 
 void Sender::fill(double now) {
   pacer_.clear_wake();
-  if (state_ != SenderState::Printing || paused_ || cancelled_ || relink_ != Relink::None) return;
+  if (state_ != SenderState::Printing || paused_ || printer_paused_ || cancelled_ || relink_ != Relink::None) return;
   if (resend_.settling()) {
     if (!settled(now)) return;
     resend_.settled();
@@ -304,7 +305,7 @@ void Sender::on_ok(const Response& r, double now) {
     learnt_planner_ = r.planner_free;
     clock_.set_planner_blocks(learnt_planner_);
   }
-  if (answers_handshake(now)) return;
+  if (answers_handshake(r, now)) return;
   // Marlin answers a rejected line with Error, Resend and "ok": that ok
   // belongs to the rejected line, which already left the flight list.
   if (relink_ == Relink::Locating || relink_ == Relink::Finishing) {
@@ -328,7 +329,7 @@ void Sender::on_ok(const Response& r, double now) {
 }
 
 // An "ok" during the handshake: M110's (then M115 goes out), or M115's.
-bool Sender::answers_handshake(double now) {
+bool Sender::answers_handshake(const Response& r, double now) {
   if (state_ == SenderState::Handshake) {
     state_ = SenderState::Capabilities;
     handshake_retry_ = now;
@@ -336,6 +337,8 @@ bool Sender::answers_handshake(double now) {
     return true;
   }
   if (state_ != SenderState::Capabilities) return false;
+  // Klipper answers M115 on its ok line.
+  if (!caps_answered_ && r.text.find("FIRMWARE_NAME:") != std::string_view::npos) on_capability(r.text);
   // The answer to M115, or a late answer to a repeated M110 (one sent
   // after the greeting of a board that was still booting). Printing starts
   // once the link has been quiet for a moment, so no such extra "ok" can
@@ -405,7 +408,17 @@ void Sender::on_capability(std::string_view text) {
       config_.max_line = firmware_.max_line;
     }
   }
-  if (firmware_.advanced_ok) flow_.firmware_has_advanced_ok();
+  if (firmware_.advanced_ok && config_.firmware->advanced_ok_possible) flow_.firmware_has_advanced_ok();
+  if (said.names_firmware) detect_flavour();
+}
+
+// The firmware named in the answer to M115 picks the description, before
+// any line of the input is taken (they are classified by it).
+void Sender::detect_flavour() {
+  const FirmwareFlavor* found = find_firmware_by_report(firmware_.name);
+  if (!config_.firmware_from_report || found == nullptr || found == config_.firmware) return;
+  config_.firmware = found;
+  log(LogLevel::Info, 0, fmt::format("firmware: {} (flavour {})", firmware_.name, found->name));
 }
 
 void Sender::on_line(std::string_view text, double now) {
@@ -444,7 +457,14 @@ void Sender::on_line(std::string_view text, double now) {
     case ResponseKind::Capability: on_capability(r.text); break;
     case ResponseKind::Start: on_start(r.text, now); break;
     case ResponseKind::Echo:
-      log(LogLevel::Info, 0, fmt::format("printer: {}", r.text));
+      if (r.unknown_command) {
+        // Marlin and Klipper answer an unknown command so, with its ok: the
+        // print goes on without it.
+        ++stats_.unknown_commands;
+        log(LogLevel::Warning, 0, fmt::format("the printer did not take a command: {}", r.text));
+      } else {
+        log(LogLevel::Info, 0, fmt::format("printer: {}", r.text));
+      }
       // Marlin's boot after the reset pin ("start" may have been lost).
       if (is_reset_note(r.text)) on_start(r.text, now);
       break;
@@ -479,7 +499,7 @@ void Sender::on_error(const Response& r, double now) {
     fail(fmt::format("the printer reported a fatal error: {}; last acknowledged: {}", r.text, describe(last_acked_)));
   } else {
     log(r.error == ErrorClass::Recoverable ? LogLevel::Warning : LogLevel::Info, 0,
-        fmt::format("printer: Error:{}", r.text));
+        fmt::format("printer error: {}", r.text));
   }
 }
 
@@ -487,6 +507,13 @@ void Sender::on_error(const Response& r, double now) {
 // a handler a pause holds sending until the resume.
 void Sender::on_action(std::string_view action) {
   log(LogLevel::Warning, 0, fmt::format("printer action: {}", action));
+  // Prusa's own pause (M601, its knob): it holds every command until it
+  // resumes; so does the sender, and a person decides how long that is.
+  if (config_.firmware->reports_own_pause && action.rfind("paused", 0) == 0) printer_paused_ = true;
+  if (config_.firmware->reports_own_pause && action.rfind("resumed", 0) == 0) {
+    printer_paused_ = false;
+    last_rx_ = std::max(last_rx_, last_any_rx_);
+  }
   if (on_action_) {
     on_action_(action);
     return;
@@ -514,9 +541,26 @@ bool Sender::long_command_in_flight() const {
                      [this](const InFlight::Entry& f) { return f.number > 0 && slot(f.number).long_running; });
 }
 
+// Its own pause, or a command waiting for the user without a word (Prusa's
+// M600): the printer is healthy however long that takes.
+bool Sender::waiting_for_user() const {
+  return printer_paused_ || std::any_of(flight_.begin(), flight_.end(), [this](const InFlight::Entry& f) {
+           return f.number > 0 && slot(f.number).silent_wait;
+         });
+}
+
+// A long command on a firmware that says nothing until it is done
+// (Klipper's and RepRapFirmware's G28, G29, G4).
+bool Sender::silent_command_in_flight() const {
+  if (config_.firmware->busy_keepalive) return false;
+  return std::any_of(flight_.begin(), flight_.end(),
+                     [this](const InFlight::Entry& f) { return f.number > 0 && slot(f.number).unbounded; });
+}
+
 double Sender::current_timeout() const {
   double t = config_.timeout;
   if (long_command_in_flight()) t *= 6;
+  if (silent_command_in_flight()) t *= 6;
   if (last_rx_ - last_busy_ < config_.timeout) t *= 2;  // a busy firmware gets more time
   return t;
 }
@@ -533,7 +577,7 @@ void Sender::planned(const Slot& s, double now) {
 }
 
 double Sender::overdue_at() const {
-  if (flight_.empty() || state_ != SenderState::Printing) return kNever;
+  if (flight_.empty() || state_ != SenderState::Printing || waiting_for_user()) return kNever;
   // The answer the sender waits for: the oldest line's, or while an M105 of
   // ours is out behind it, the newest one's (it answers for everything
   // before it). With no line in flight there is nothing to ask about.
@@ -560,6 +604,9 @@ double Sender::overdue_at() const {
   // Asked already with a long command ahead: it answers when done, and its
   // keepalives or --timeout tell how long that is.
   if (flight_[k].number < 0 && wait.unbounded) return kNever;
+  // A firmware that says nothing during it (Klipper's G28): nothing to learn
+  // by asking before --timeout.
+  if (wait.unbounded && !config_.firmware->busy_keepalive) return kNever;
   double due = clock_.due(flight_[k].arrival, wait);
   // A question without an answer (or one that did not fit) waits twice as
   // long as the one before.
@@ -626,7 +673,12 @@ void Sender::on_timer(double now) {
     handshake_timer(now);
     return;
   }
-  if (!flight_.empty() && now >= last_rx_ + current_timeout()) {
+  if (!flight_.empty() && now >= last_rx_ + current_timeout() && waiting_for_user()) {
+    if (!told_user_wait_)
+      log(LogLevel::Info, 0, "the printer waits for someone at it (its own pause, M600): no timeout meanwhile");
+    told_user_wait_ = true;
+    last_rx_ = now;
+  } else if (!flight_.empty() && now >= last_rx_ + current_timeout()) {
     if (++timeouts_in_row_ > config_.max_timeouts) {
       ++stats_.timeouts;
       fail(fmt::format("the printer stopped answering ({} timeouts of {:g} s in a row); last acknowledged: {}",

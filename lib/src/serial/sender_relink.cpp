@@ -30,6 +30,13 @@ void Sender::link_lost(double now) {
 
 void Sender::link_back(double now) {
   if (relink_ != Relink::Down || finished()) return;
+  if (!config_.firmware->checks_line_numbers) {
+    // (A mis-numbered line would simply run on Klipper.)
+    fail(fmt::format("the port came back, but {} does not number lines: it cannot say which line it took last; "
+                     "last acknowledged: {}",
+                     config_.firmware->name, describe(last_acked_)));
+    return;
+  }
   relink_ = Relink::Probing;
   relink_since_ = now;
   position_asked_ = false;

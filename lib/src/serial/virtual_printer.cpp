@@ -24,7 +24,8 @@ constexpr double kAmbient = 20.0;
 
 VirtualPrinter::VirtualPrinter(const VirtualPrinterConfig& config, std::FILE* log)
     : config_(config), log_(log), wire_(config.baud), schedule_(config.scheduled), rng_(config.seed) {
-  send(dialect_->greeting());
+  if (const ReplyDialect* d = find_dialect(config.firmware)) dialect_ = d;
+  if (std::string hello = dialect_->greeting(); !hello.empty()) send(hello);
 }
 
 bool VirtualPrinter::chance(double p) {
@@ -58,7 +59,8 @@ double VirtualPrinter::next_event() const {
   switch (wait_) {
     case Wait::Dwell:
     case Wait::Homing:
-    case Wait::Stall: t = std::min(t, wait_until_); break;
+    case Wait::Stall:
+    case Wait::User: t = std::min(t, wait_until_); break;
     case Wait::Heating: t = std::min(t, heat_done_time()); break;
     default: break;
   }
@@ -73,7 +75,8 @@ void VirtualPrinter::advance(double now) {
     double t_fw = kNever;
     if (!halted_ && !silent_ && !disconnected_) {
       if (!planner_.empty()) t_fw = head_end_;
-      if (wait_ == Wait::Dwell || wait_ == Wait::Homing || wait_ == Wait::Stall) t_fw = std::min(t_fw, wait_until_);
+      if (wait_ == Wait::Dwell || wait_ == Wait::Homing || wait_ == Wait::Stall || wait_ == Wait::User)
+        t_fw = std::min(t_fw, wait_until_);
       if (wait_ == Wait::Heating) t_fw = std::min(t_fw, heat_done_time());
       if (wait_ != Wait::None && wait_ != Wait::Heating) t_fw = std::min(t_fw, next_busy_);
       t_fw = std::min({t_fw, next_report_, link_up_at_, schedule_.next_time()});
@@ -88,7 +91,8 @@ void VirtualPrinter::advance(double now) {
     update_temperatures(t);
     while (!planner_.empty() && head_end_ <= t) planner_step(head_end_);
     if (wait_ != Wait::None && wait_ != Wait::Heating && next_busy_ <= t) {
-      send(dialect_->busy());
+      // (Klipper and RepRapFirmware keep quiet; nobody says busy while the user is asked.)
+      if (dialect_->behaviour().busy_keepalive && wait_ != Wait::User) send(dialect_->busy());
       next_busy_ = t + kKeepalive;
     }
     if (next_report_ <= t) {
@@ -116,9 +120,8 @@ void VirtualPrinter::arrive(char c, double t) {
                 (cmd.size() == 4 || cmd[4] < '0' || cmd[4] > '9');
     emergency_.clear();
     if (m112) {
-      send(dialect_->halted());
-      halted_ = true;
-      return;
+      halt("Shutdown due to M112 command");
+      if (halted_) return;  // (Klipper reads on, shut down)
     }
   }
   // Marlin keeps one slot of its ring buffer free.
@@ -200,6 +203,10 @@ void VirtualPrinter::reject(LineFault fault) {
 }
 
 bool VirtualPrinter::process_line(std::string& line) {
+  if (!dialect_->behaviour().checks_line_numbers) {
+    queue_unchecked(line);
+    return true;
+  }
   if (chance(config_.corrupt) && !line.empty()) {
     std::size_t i = std::uniform_int_distribution<std::size_t>(0, line.size() - 1)(rng_);
     line[i] = static_cast<char>(line[i] ^ (1 << std::uniform_int_distribution<int>(0, 5)(rng_)));
@@ -247,6 +254,20 @@ bool VirtualPrinter::process_line(std::string& line) {
     reject(LineFault::NoLineNumber);
     return false;
   }
+  push_command(text, number);
+  return true;
+}
+
+// Klipper reads "N12" and "*34" and ignores them: the number is kept for
+// the log only.
+void VirtualPrinter::queue_unchecked(std::string_view line) {
+  long long number = -1;
+  if (!line.empty() && line[0] == 'N') number = std::strtoll(std::string(line.substr(1, 20)).c_str(), nullptr, 10);
+  if (number >= 0) ++stats_.accepted_lines;
+  push_command(command_for_sending(line), number);
+}
+
+void VirtualPrinter::push_command(std::string_view text, long long number) {
   Command cmd;
   if (!spare_.empty()) {
     cmd = std::move(spare_.back());
@@ -255,7 +276,6 @@ bool VirtualPrinter::process_line(std::string& line) {
   cmd.text.assign(text);
   cmd.number = number;
   queue_.push_back(std::move(cmd));
-  return true;
 }
 
 void VirtualPrinter::add_block(double duration, double t) {
@@ -316,13 +336,15 @@ void VirtualPrinter::start(double t) {
     watch_.queued_length = queued_length_;
   }
   Line line = Line::parse(c.text);
+  if (refused(line)) return;
   Move m = state_.apply(line);
   if (execute(line, m, t)) finish(t);
 }
 
 // One handler per command; true: done now (its ok goes out), false: it waits.
 bool VirtualPrinter::execute(const Line& line, const Move& m, double t) {
-  if (line.kind == CommandKind::Extended || line.kind == CommandKind::Host) return process_unknown(line);
+  if (!dialect_->knows(line)) return process_unknown(line);
+  if (line.kind == CommandKind::Extended) return process_extended(line);
   if (m.kind == MoveKind::Linear || m.kind == MoveKind::Arc) return process_move(m, t);
   if (line.kind != CommandKind::Standard) return true;
   if (line.letter == 'G') {
@@ -340,14 +362,16 @@ bool VirtualPrinter::execute(const Line& line, const Move& m, double t) {
     case 110: return process_M110(line);
     case 112: return process_M112();
     case 114: return process_M114();
-    case 115: return process_M115();
+    case 115: return line.find('U') != nullptr ? process_M115_version(line, t) : process_M115();
     case 155: return process_M155(line, t);
     case 400: return process_M400(t);
+    case 600: return process_M600(t);
+    case 601: return process_M601(t);
     default: return true;
   }
 }
 
-// Klipper-style extended commands and host commands: Marlin knows none.
+// A command the firmware does not know (Marlin: extended and host commands).
 bool VirtualPrinter::process_unknown(const Line& line) {
   send(dialect_->unknown_command(line.code()));
   return true;
@@ -364,7 +388,7 @@ bool VirtualPrinter::process_move(const Move& m, double t) {
     top_z_ = state_.position[kZ];
     started_layer_ = ++layer_;
   }
-  if (planner_.size() >= static_cast<std::size_t>(config_.planner)) {
+  if (planner_full(t)) {
     wait_ = Wait::PlannerSlot;
     next_busy_ = t + kKeepalive;
     return false;
@@ -373,8 +397,16 @@ bool VirtualPrinter::process_move(const Move& m, double t) {
   return true;
 }
 
-// Waits for the planner to empty, then `after` (1 home, 2 dwell) for `duration`.
-bool VirtualPrinter::wait_for_planner(double t, int after, double duration) {
+// Klipper takes moves while less than buffer_seconds of motion are queued;
+// Marlin while its planner has a free block.
+bool VirtualPrinter::planner_full(double t) const {
+  double ahead = dialect_->behaviour().buffer_seconds;
+  if (ahead > 0) return !planner_.empty() && stats_.last_move_end - t > ahead + 1e-9;
+  return planner_.size() >= static_cast<std::size_t>(config_.planner);
+}
+
+// Waits for the planner to empty, then `after` for `duration`.
+bool VirtualPrinter::wait_for_planner(double t, After after, double duration) {
   wait_ = Wait::PlannerEmpty;
   next_busy_ = t + kKeepalive;
   after_ = after;
@@ -384,17 +416,17 @@ bool VirtualPrinter::wait_for_planner(double t, int after, double duration) {
 
 // G4 P<ms> S<s>: dwell, after the moves before it.
 bool VirtualPrinter::process_G4(const Line& line, double t) {
-  return wait_for_planner(t, 2, line.value_or('P', 0) / 1000 + line.value_or('S', 0));
+  return wait_for_planner(t, After::Dwell, line.value_or('P', 0) / 1000 + line.value_or('S', 0));
 }
 
 // G28, G29: homing or probing, after the moves before it.
 bool VirtualPrinter::process_G28(double t) {
   homed_ = true;
-  return wait_for_planner(t, 1, config_.instant_moves ? 0 : kHomingTime);
+  return wait_for_planner(t, After::Home, config_.instant_moves ? 0 : kHomingTime);
 }
 
 // M400: waits for the moves to end.
-bool VirtualPrinter::process_M400(double t) { return wait_for_planner(t, 0, 0); }
+bool VirtualPrinter::process_M400(double t) { return wait_for_planner(t, After::Nothing, 0); }
 
 // M104/M140 S|R: a hot end or bed target, no wait.
 bool VirtualPrinter::process_M104(const Line& line) {
@@ -424,17 +456,17 @@ bool VirtualPrinter::process_M105() {
   return true;
 }
 
-// M110 N<n>: the next line number is n + 1.
+// M110 N<n>: the next line number is n + 1 (Klipper: nothing).
 bool VirtualPrinter::process_M110(const Line& line) {
-  if (line.find('N') != nullptr) last_n_ = static_cast<long long>(line.value_or('N', 0));
+  if (line.find('N') != nullptr && dialect_->behaviour().checks_line_numbers) last_n_ = static_cast<long long>(line.value_or('N', 0));
   return true;
 }
 
-// M112 (without the emergency parser's head start): halt at once, no ok.
+// M112 (without the emergency parser's head start): halt at once, no ok
+// (Klipper, which answers while shut down: with its ok).
 bool VirtualPrinter::process_M112() {
-  send(dialect_->halted());
-  halted_ = true;
-  return false;
+  halt("Shutdown due to M112 command");
+  return shutdown_;
 }
 
 // M114: the position and the step counts (80 steps/mm XY, 400 Z).
@@ -445,9 +477,10 @@ bool VirtualPrinter::process_M114() {
   return true;
 }
 
-// M115: the firmware and its capabilities.
+// M115: the firmware and its capabilities (Klipper: on the ok line).
 bool VirtualPrinter::process_M115() {
   for (const std::string& l : dialect_->firmware_report(config_)) send(l);
+  ok_sent_ = dialect_->behaviour().report_on_ok;
   return true;
 }
 
@@ -462,20 +495,25 @@ bool VirtualPrinter::still_waiting(double t) {
   switch (wait_) {
     case Wait::None: return false;
     case Wait::PlannerSlot:
-      if (planner_.size() >= static_cast<std::size_t>(config_.planner)) return true;
+      if (planner_full(t)) return true;
       add_block(pending_duration_, t);
       return false;
     case Wait::PlannerEmpty:
       if (!planner_.empty()) return true;
-      if (after_ == 0) return false;
-      wait_ = after_ == 1 ? Wait::Homing : Wait::Dwell;
+      if (after_ == After::Nothing) return false;
+      wait_ = after_ == After::Home ? Wait::Homing : after_ == After::Dwell ? Wait::Dwell : Wait::User;
+      if (after_ == After::OwnPause) {
+        own_paused_ = true;
+        send(dialect_->paused());
+      }
       wait_until_ = t + after_duration_;
       waited_while_empty_ = true;
-      after_ = 0;
+      after_ = After::Nothing;
       return t < wait_until_;
     case Wait::Dwell:
     case Wait::Homing:
     case Wait::Stall: return t < wait_until_;
+    case Wait::User: return t < wait_until_ || end_user_wait();
     case Wait::Heating: {
       update_temperatures(t);
       bool done = heated();
@@ -507,8 +545,7 @@ void VirtualPrinter::finish(double t) {
   long long done = static_cast<long long>(stats_.executed);
   if (done == config_.halt_after) {
     send(dialect_->thermal_runaway());
-    send(dialect_->halted());
-    halted_ = true;
+    halt("Heater extruder not heating at expected rate");
   }
   if (done == config_.silent_after) silent_ = true;
   if (done == config_.disconnect_after) disconnected_ = true;
@@ -520,6 +557,10 @@ void VirtualPrinter::finish(double t) {
   bool due = schedule_.take_after_command(number, started_layer_, fault);
   started_layer_ = 0;
   if (due) fire(fault, t);
+  if (restart_pending_) {
+    restart_pending_ = false;
+    reset(t);
+  }
 }
 
 double VirtualPrinter::travelled(double t) const {

@@ -37,7 +37,7 @@ void VirtualPrinter::reset(double t) {
   block_numbers_.clear();
   empty_since_ = t;
   wait_ = Wait::None;
-  after_ = 0;
+  after_ = After::Nothing;
   ok_sent_ = false;
   heating_bed_ = false;
   autoreport_ = 0;
@@ -47,6 +47,7 @@ void VirtualPrinter::reset(double t) {
   homed_ = false;
   last_n_ = 0;
   halted_ = silent_ = false;
+  shutdown_ = own_paused_ = false;
   // The part is still on the bed: the layer count (the printer's own view
   // of heights) goes on.
   for (const std::string& line : dialect_->restart_greeting(config_.greeting)) send(line);

@@ -52,7 +52,14 @@ void parse_virtual_options(std::string_view text, VirtualPrinterConfig& c) {
         throw std::invalid_argument(fmt::format("virtual printer option {}: '{}' must be a whole number >= {}", key, value, lo));
       return v;
     };
-    if (key == "baud") {
+    if (key == "firmware") {
+      if (std::find(kVirtualFirmwares.begin(), kVirtualFirmwares.end(), value) == kVirtualFirmwares.end())
+        throw std::invalid_argument(
+            fmt::format("virtual printer option firmware: '{}' is not marlin, klipper, prusa or rrf", value));
+      c.firmware = std::string(value);
+    } else if (key == "user-seconds") {
+      c.user_seconds = parse_value(key, value);
+    } else if (key == "baud") {
       c.baud = count(50);
     } else if (key == "queue") {
       c.queue = static_cast<int>(count(1));

@@ -30,7 +30,7 @@ enum class ResponseKind : std::uint8_t {
   Error,        // "Error:...", Klipper's "!! ..."
   Busy,         // "busy: processing" (with or without "echo:")
   Echo,         // "echo:..." and Klipper's "// ..." messages
-  Action,       // "//action:pause" and friends
+  Action,       // "//action:pause" and friends (Prusa: "// action:paused")
   Temperature,  // an autoreport or M105 answer on its own line
   Wait,         // Repetier/Marlin "wait" while idle
   Start,        // the greeting after a reset
@@ -52,6 +52,7 @@ struct Response {
   int queue_free = -1;      // ADVANCED_OK B
   bool has_temperature = false;  // "ok T:..." (the answer to M105)
   ErrorClass error = ErrorClass::None;
+  bool unknown_command = false;  // Echo: the firmware does not know a command it was sent
   std::string_view text;    // the line without its prefix (error message, action name, ...)
 };
 
@@ -93,7 +94,9 @@ struct CapabilityLine {
   bool max_line = false;         // "Cap:MAX_CMD_SIZE:n" with a usable n (16 or more)
 };
 // Adds one line of the answer to M115 to `info`: the FIRMWARE_NAME line
-// ("FIRMWARE_NAME:Marlin 2.1.2 SOURCE_CODE_URL:... TIME_SCALE:20 BAUD:250000"),
+// ("FIRMWARE_NAME:Marlin 2.1.2 SOURCE_CODE_URL:... TIME_SCALE:20 BAUD:250000",
+// Klipper's "ok FIRMWARE_NAME:Klipper FIRMWARE_VERSION:v0.12.0", RepRapFirmware's
+// "FIRMWARE_NAME: RepRapFirmware for Duet 3 MB6HC FIRMWARE_VERSION: 3.5.1"),
 // or "Cap:NAME:1" lines (ADVANCED_OK, EMERGENCY_PARSER, AUTOREPORT_TEMP,
 // BUSY_PROTOCOL or HOST_ACTION_COMMANDS, MAX_CMD_SIZE).
 CapabilityLine read_capability(std::string_view text, FirmwareInfo& info);

@@ -35,8 +35,13 @@
 namespace gcode::serial {
 
 struct SenderConfig {
-  // Which commands take long or answer at once (never null).
+  // Which commands take long or answer at once, how the firmware answers
+  // (never null).
   const FirmwareFlavor* firmware = &marlin2_firmware();
+  // The answer to M115 replaces `firmware` when its FIRMWARE_NAME names a
+  // described flavour (find_firmware_by_report: Klipper, Prusa-Firmware,
+  // RepRapFirmware, Marlin 1 or 2).
+  bool firmware_from_report = true;
   FlowMode flow = FlowMode::Window;
   int queue = 4;             // Marlin BUFSIZE
   int rx_buffer = 128;       // Marlin RX_BUFFER_SIZE
@@ -86,6 +91,7 @@ struct SenderStats {
   std::uint64_t timeouts = 0;            // silent rounds of --timeout
   std::uint64_t busy = 0;
   std::uint64_t unknown = 0;
+  std::uint64_t unknown_commands = 0;    // commands the firmware said it does not know
   std::uint64_t stray_oks = 0;           // an ok that answers for nothing in flight
   std::uint64_t shortened = 0;           // M117/M118 texts cut to fit
   std::uint64_t skipped = 0;             // lines left out (skip_bad_lines)
@@ -219,6 +225,11 @@ class Sender : private TimeSink {
   double estimated_time() const { return estimator_.elapsed(); }
   const Position& last_acknowledged() const { return last_acked_; }
   const FirmwareInfo& firmware() const { return firmware_; }
+  // The flavour in use: SenderConfig's, or the one the M115 answer named.
+  const FirmwareFlavor& flavour() const { return *config_.firmware; }
+  // The printer paused itself ("// action:paused", a flavour that reports
+  // its own pause) and has not said it resumed.
+  bool printer_paused() const { return printer_paused_; }
   const FlowControl& flow() const { return flow_; }
   std::size_t in_flight() const { return flight_.size(); }
   std::size_t pending() const { return static_cast<std::size_t>(next_number_ - next_send_); }
@@ -249,6 +260,7 @@ class Sender : private TimeSink {
     int layer = 0;
     bool long_running = false;   // M109, G28, M400 ...: the answer may take long
     bool unbounded = false;      // M109, G28 ...: for a time nothing in the file tells
+    bool silent_wait = false;    // waits for the user without a word (Prusa's M600)
     bool temperature_query = false;  // M105: answered in order with "ok T:..."
     bool move = false;           // takes a planner block (its ok comes when it has one)
     bool instant = false;        // answered at once (G92, M104, G1 F1200 ...)
@@ -275,7 +287,7 @@ class Sender : private TimeSink {
   void acknowledge_front(double now);
   void acknowledge_through(std::size_t index, double now);
   void on_ok(const Response& r, double now);
-  bool answers_handshake(double now);
+  bool answers_handshake(const Response& r, double now);
   void on_resend(long long n, double now);
   void on_error(const Response& r, double now);
   void on_action(std::string_view action);
@@ -292,6 +304,9 @@ class Sender : private TimeSink {
   bool settled(double now) const;
   bool lines_in_flight() const { return flight_.lines() > 0; }
   bool long_command_in_flight() const;
+  bool waiting_for_user() const;
+  bool silent_command_in_flight() const;
+  void detect_flavour();
   bool paced(double now);
   void planned(const Slot& s, double now);
   void log(LogLevel level, std::uint64_t input_line, std::string_view message) const;
@@ -332,6 +347,8 @@ class Sender : private TimeSink {
   bool cancelled_ = false;
   bool emergency_ = false;
   bool paused_ = false;         // //action:pause until //action:resume
+  bool printer_paused_ = false; // "// action:paused" until "// action:resumed"
+  bool told_user_wait_ = false; // said once that a wait for the user holds the timeouts
   bool caps_answered_ = false;
   bool continuing_ = false;     // continue_from(): a resume's numbering
   bool idle_hint_ = false;      // the printer said "wait" (idle) with lines in flight

@@ -1,6 +1,9 @@
 #pragma once
 // A model of a Marlin printer at the other end of a serial link, for tests,
-// benchmarks and trying a pipeline without hardware.
+// benchmarks and trying a pipeline without hardware; with another dialect
+// (VirtualPrinterConfig::firmware: klipper, prusa, rrf) it answers and
+// behaves as that firmware does where it differs (virtual_dialect.hpp,
+// virtual_printer_flavour.cpp).
 //
 // It is a discrete-event simulation in simulated seconds (the caller maps
 // wall time to simulated time with a time scale, see virtual_link.hpp):
@@ -101,7 +104,9 @@ class VirtualPrinter {
   bool homed() const { return homed_; }
   // Layers begun: new heights at which the printer extruded (kept across resets).
   int layer() const { return layer_; }
-  bool halted() const { return halted_; }
+  // Halted (Marlin's kill(): silent from then on) or shut down (Klipper:
+  // every command refused until FIRMWARE_RESTART).
+  bool halted() const { return halted_ || shutdown_; }
   const VirtualPrinterStats& stats() const { return stats_; }
   const VirtualPrinterConfig& config() const { return config_; }
   // The time the planner was empty between moves, as a fraction of the time
@@ -123,7 +128,9 @@ class VirtualPrinter {
   const Watch& watched() const { return watch_; }
 
  private:
-  enum class Wait : std::uint8_t { None, PlannerSlot, PlannerEmpty, Dwell, Heating, Homing, Stall };
+  enum class Wait : std::uint8_t { None, PlannerSlot, PlannerEmpty, Dwell, Heating, Homing, Stall, User };
+  // What follows a wait for the planner to empty.
+  enum class After : std::uint8_t { Nothing, Home, Dwell, User, OwnPause };
   struct Command {
     std::string text;      // without N and checksum
     long long number = -1;
@@ -133,6 +140,8 @@ class VirtualPrinter {
   void run(double t);
   void parse_rx();
   bool process_line(std::string& line);
+  void queue_unchecked(std::string_view line);
+  void push_command(std::string_view text, long long number);
   void reject(LineFault fault);
   void start(double t);
   bool execute(const Line& line, const Move& m, double t);
@@ -149,7 +158,18 @@ class VirtualPrinter {
   bool process_M115();
   bool process_M155(const Line& line, double t);
   bool process_M400(double t);
-  bool wait_for_planner(double t, int after, double duration);
+  bool wait_for_planner(double t, After after, double duration);
+  bool planner_full(double t) const;
+  // The firmware's own ways (virtual_printer_flavour.cpp).
+  bool refused(const Line& line);
+  void drop_head();
+  bool moves_axes(const Line& line) const;
+  void halt(std::string_view why);
+  bool process_extended(const Line& line);
+  bool process_M600(double t);
+  bool process_M601(double t);
+  bool process_M115_version(const Line& line, double t);
+  bool end_user_wait();
   void set_target(const Line& line);
   bool still_waiting(double t);
   void finish(double t);
@@ -186,7 +206,7 @@ class VirtualPrinter {
   double autoreport_ = 0;       // M155 interval, 0 = off
   bool heating_bed_ = false;
   double pending_duration_ = 0; // of a move waiting for a planner block
-  int after_ = 0;               // after the planner drains: 1 home, 2 dwell
+  After after_ = After::Nothing;
   double after_duration_ = 0;
   bool ok_sent_ = false;        // M105 answers on its ok line
 
@@ -205,6 +225,10 @@ class VirtualPrinter {
   long long last_n_ = 0;
   double hotend_ = 20, bed_ = 20, hotend_target_ = 0, bed_target_ = 0, temp_time_ = 0;
   bool halted_ = false, silent_ = false, disconnected_ = false;
+  bool shutdown_ = false;        // Klipper's shutdown: commands refused until FIRMWARE_RESTART
+  std::string shutdown_reason_;
+  bool own_paused_ = false;      // Prusa's own pause (M601) is on
+  bool restart_pending_ = false; // FIRMWARE_RESTART done: the restart follows its ok
   FaultSchedule schedule_;
   bool link_down_ = false, reset_on_up_ = false, homed_ = false;
   double link_up_at_ = std::numeric_limits<double>::infinity();

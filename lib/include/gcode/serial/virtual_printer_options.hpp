@@ -2,6 +2,7 @@
 // What the virtual printer (virtual_printer.hpp) is: its buffers, link,
 // planner and faults, as `virtual:key=value,...` names them (gc-send
 // --port virtual:..., gc-virtual-printer).
+#include <array>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -11,7 +12,17 @@
 
 namespace gcode::serial {
 
+// The firmwares the virtual printer plays (find_dialect, virtual_dialect.hpp,
+// has one for each name).
+inline constexpr std::array<std::string_view, 5> kVirtualFirmwares = {"marlin", "klipper", "prusa", "rrf",
+                                                                      "reprapfirmware"};
+
 struct VirtualPrinterConfig {
+  // Whose replies and quirks: marlin, klipper, prusa, rrf (virtual_dialect.hpp).
+  std::string firmware = "marlin";
+  // How long the user at the printer takes to answer a wait that asks for
+  // them (Prusa's M600, its own pause, "M115 U" newer), in simulated seconds.
+  double user_seconds = 5;
   double baud = 250000;
   int queue = 4;              // BUFSIZE
   int rx_buffer = 128;        // RX_BUFFER_SIZE
@@ -42,7 +53,7 @@ struct VirtualPrinterConfig {
 };
 
 // Applies "key=value,key=value" (the part after "virtual:") to `config`.
-// Keys: baud queue rx max-line planner time-scale speed-factor advanced-ok instant-moves
+// Keys: firmware user-seconds baud queue rx max-line planner time-scale speed-factor advanced-ok instant-moves
 // report-link heat-rate corrupt drop-ok resend garbage busy silent-after
 // halt-after disconnect-after seed log greeting, and scheduled faults
 // (virtual_fault.hpp: "reset@line=N", "drop=S@time=T"). Throws std::invalid_argument naming a bad key or value.

@@ -1,0 +1,169 @@
+// gc-send on each firmware flavour of the built-in virtual printer
+// (virtual:firmware=marlin|klipper|prusa|rrf), each with a real fixture
+// sliced for such a printer, cut into 0.2 mm pieces by gc-subdivide: the
+// flavour is detected from M115, a FIFO pause and resume leave every
+// command once and in order in the executed log with the blocks at one
+// place, a cancel ends safely, and there is no timeout; then what each
+// firmware does its own way: Klipper's "!!" errors and unknown commands
+// (the print goes on), Prusa's own pause (M601) and silent M600, and
+// gc-virtual-printer --firmware klipper on a pseudo-terminal.
+#include <catch2/catch.hpp>
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "control_run.hpp"
+#include "pty_run.hpp"
+#include "serial_check.hpp"
+#include "test_support.hpp"
+
+using gctest::check_one_pause;
+using gctest::number_after;
+using gctest::PauseRun;
+using gctest::quote;
+using gctest::send_with_control;
+using gctest::tool_path;
+
+namespace {
+
+struct Flavour {
+  const char* name;      // virtual:firmware=
+  const char* fixture;   // sliced for such a printer
+  const char* detected;  // the flavour gc-send names once M115 is answered
+};
+
+const Flavour kFlavours[] = {
+    {"marlin", "prusa_dome_varlayer_ender3_abs.gcode", ""},
+    {"klipper", "prusa_pegs_0.2_klipper_zhop_labels.gcode", "klipper"},
+    {"prusa", "prusa_cube_0.2_mk3s_rel_zhop.gcode", "prusa"},
+    {"rrf", "prusa_tshape_0.2_rrf_fwretract.gcode", "reprapfirmware"},
+};
+
+// The start code and first three layers of a fixture in 0.2 mm pieces,
+// written once per fixture.
+const std::string& pieces_of(const std::string& fixture) {
+  static std::map<std::string, std::string> paths;
+  std::string& path = paths[fixture];
+  if (path.empty()) {
+    path = gctest::temp_dir() + "/" + fixture + ".pieces";
+    auto r = gctest::run(quote(tool_path("gc-subdivide")) + " --max 0.2 " + quote(gctest::fixture_path(fixture)) +
+                         " | awk '/^;LAYER_CHANGE/ { if (++n == 4) exit } { print }' > " + quote(path));
+    REQUIRE(r.status == 0);
+  }
+  return path;
+}
+
+// Instant moves: the run lasts as long as the link takes.
+std::string printer(const Flavour& f) {
+  return std::string("firmware=") + f.name + ",time-scale=20,instant-moves,heat-rate=1000";
+}
+
+void check_detected(const Flavour& f, const std::string& err) {
+  if (*f.detected != 0) CHECK(err.find(std::string("(flavour ") + f.detected + ")") != std::string::npos);
+  CHECK(err.find("timeouts 0") != std::string::npos);
+  CHECK(err.find("no answer for") == std::string::npos);
+}
+
+}  // namespace
+
+TEST_CASE("gc-send flavours: a FIFO pause and resume on each firmware, every command once and in order",
+          "[gc-send][flavour]") {
+  for (const Flavour& f : kFlavours) {
+    INFO("firmware " << f.name << ", " << f.fixture);
+    const std::string& file = pieces_of(f.fixture);
+    auto input = gctest::commands_of(gctest::read_file(file));
+    REQUIRE(input.size() > 2000);
+    PauseRun r = send_with_control(file, printer(f), "--no-pace",
+                                   "at_layer 1; echo pause > \"$F\"; paused; echo resume > \"$F\"");
+    INFO(r.result.err);
+    REQUIRE(r.result.status == 0);
+    check_detected(f, r.result.err);
+    std::uint64_t last = static_cast<std::uint64_t>(number_after(r.result.err, "pause block sent after input line "));
+    gctest::Checked c = check_one_pause(r.log, input, last);
+    gcode::MachineState before = gctest::state_after(r.log, c.prefix);
+    gcode::MachineState after = gctest::state_after(r.log, c.prefix + c.block);
+    for (int a : {gcode::kX, gcode::kY, gcode::kZ, gcode::kE}) CHECK(after.at(a) == before.at(a));
+    CHECK(after.relative_e == before.relative_e);
+  }
+}
+
+TEST_CASE("gc-send flavours: a cancel on each firmware ends safely after the commands sent, in order",
+          "[gc-send][flavour]") {
+  for (const Flavour& f : kFlavours) {
+    INFO("firmware " << f.name << ", " << f.fixture);
+    const std::string& file = pieces_of(f.fixture);
+    auto input = gctest::commands_of(gctest::read_file(file));
+    PauseRun r = send_with_control(file, printer(f), "--no-pace", "at_layer 1; sleep 0.2; echo cancel > \"$F\"");
+    INFO(r.result.err);
+    REQUIRE(r.result.status == 0);
+    check_detected(f, r.result.err);
+    CHECK(r.result.err.find("cancelled after input line") != std::string::npos);
+    std::size_t prefix = 0;
+    while (prefix < input.size() && prefix < r.log.size() && r.log[prefix].command == input[prefix].text) ++prefix;
+    CHECK(prefix > 100);
+    CHECK(prefix < input.size());
+    REQUIRE(r.log.size() > prefix + 5);
+    std::vector<std::string> tail;
+    for (std::size_t i = r.log.size() - 5; i < r.log.size(); ++i) tail.push_back(r.log[i].command);
+    CHECK(tail == std::vector<std::string>{"M104 S0", "M140 S0", "M107", "M84", "M400"});
+  }
+}
+
+TEST_CASE("gc-send on Klipper: '!!' errors and unknown commands are warnings, the print goes on", "[gc-send][flavour]") {
+  std::string dir = gctest::temp_dir();
+  std::string file = dir + "/early_move.gcode", log = dir + "/executed.log";
+  // A move before G28: Klipper refuses it ("!! Must home axis first") and
+  // says ok; M201 is Marlin's, not Klipper's.
+  gctest::write_file(file, "G1 X5 F3000\nM201 X1000 Y1000\nG28\n" + gctest::read_file(pieces_of(kFlavours[1].fixture)));
+  auto r = gctest::run(quote(tool_path("gc-send")) + " --port virtual:" + printer(kFlavours[1]) + ",log=" + log + " " +
+                       quote(file));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.err.find("printer error: Must home axis first") != std::string::npos);
+  CHECK(r.err.find("the printer did not take a command: Unknown command:\"M201\"") != std::string::npos);
+  auto input = gctest::commands_of(gctest::read_file(file));
+  auto executed = gctest::read_log(log);
+  // Everything ran once, in order, but the refused move.
+  REQUIRE(executed.size() == input.size());  // (the final M400 makes up for it)
+  for (std::size_t i = 1; i < input.size(); ++i) REQUIRE(executed[i - 1].command == input[i].text);
+  CHECK(executed.back().command == "M400");
+}
+
+TEST_CASE("gc-send on Prusa: its own pause (M601) and M600 wait for the user, no timeout however long",
+          "[gc-send][flavour]") {
+  std::string dir = gctest::temp_dir();
+  std::string file = dir + "/own_pause.gcode", log = dir + "/executed.log";
+  // gc-pause-at puts Prusa's M601 after layer 1; an M600 follows in layer 2.
+  REQUIRE(gctest::run(quote(tool_path("gc-pause-at")) + " --after-layer 1 --method M601 --bed 250x210 " +
+                      quote(pieces_of(kFlavours[2].fixture)) + " | awk '/^;LAYER_CHANGE/ { if (++n == 3) print \"M600\" } "
+                      "{ print }' > " + quote(file))
+              .status == 0);
+  // The user takes 60 printer seconds for each, three wall seconds; the
+  // timeout is a quarter of one.
+  auto r = gctest::run(quote(tool_path("gc-send")) + " -v --timeout 0.25 --port virtual:firmware=prusa,time-scale=20,"
+                       "instant-moves,heat-rate=1000,user-seconds=60,log=" + log + " " + quote(file));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.err.find("printer action: paused") != std::string::npos);
+  CHECK(r.err.find("printer action: resumed") != std::string::npos);
+  CHECK(r.err.find("no timeout meanwhile") != std::string::npos);
+  CHECK(r.err.find("timeouts 0") != std::string::npos);
+  auto input = gctest::commands_of(gctest::read_file(file));
+  auto executed = gctest::read_log(log);
+  REQUIRE(executed.size() == input.size() + 1);
+  for (std::size_t i = 0; i < input.size(); ++i) REQUIRE(executed[i].command == input[i].text);
+  // The printer held everything after M601 until the user resumed.
+  std::size_t m601 = 0;
+  while (executed[m601].command != "M601") ++m601;
+  CHECK(executed[m601 + 1].time - executed[m601 - 1].time >= 60);
+}
+
+TEST_CASE("gc-send through gc-virtual-printer --firmware klipper on a pty: exact, detected", "[gc-send][flavour]") {
+  const std::string& file = pieces_of(kFlavours[1].fixture);
+  gctest::PtyRun r = gctest::send_through_pty(file, "-v", "--firmware klipper --no-link-report --time-scale 1000 "
+                                                       "--instant-moves --heat-rate 1000");
+  INFO(r.result.err);
+  CHECK(r.result.err.find("(flavour klipper)") != std::string::npos);
+  gctest::require_exact(r, gctest::commands_of(gctest::read_file(file)));
+}
