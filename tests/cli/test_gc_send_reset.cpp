@@ -52,6 +52,7 @@ TEST_CASE("gc-send: a printer reset mid-layer, at a layer change or in the start
     CHECK(r.result.err.find(m.says) != std::string::npos);
     gctest::ResetFigures f = require_resumed(r.log_text, expected);
     CHECK(f.resets == 1);
+    CHECK(r.result.err.find("printer resets 1 (") != std::string::npos);  // the summary
     if (std::string(m.fault) != "reset@line=4") {
       CHECK(r.result.err.find("may print twice") != std::string::npos);
       CHECK(f.redone_moves > 0);
@@ -102,6 +103,10 @@ TEST_CASE("gc-send: a reset while paused resumes into the pause; the resume retu
   REQUIRE(r.result.status == 0);
   CHECK(r.result.err.find("the printer reset") != std::string::npos);
   require_resumed(r.log_text, expected, 20, true);
+  // The status file says it too.
+  std::string json = gctest::read_file(status);
+  CHECK(json.find("\"resets\": 1") != std::string::npos);
+  CHECK(json.find("\"redone_mm\": 0.0") == std::string::npos);
 }
 
 TEST_CASE("gc-send --delta: a reset stops the print with the gc-relayer recipe, nothing more sent",

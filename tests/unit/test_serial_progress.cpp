@@ -22,6 +22,8 @@ TEST_CASE("progress: the status JSON parses and names what the line shows", "[se
   s.last_pause_layer = 11;
   s.last_paused_before = 12;
   s.temperatures = "T:205.00 /205.00 B:60.00 /60.00";
+  s.resets = 1;
+  s.redone_mm = 3.14;
   auto j = nlohmann::json::parse(gcode::serial::progress_json(s));
   CHECK(j["state"] == "paused");
   CHECK(j["layer"] == 12);
@@ -29,6 +31,8 @@ TEST_CASE("progress: the status JSON parses and names what the line shows", "[se
   CHECK(j["lines"] == 812);
   CHECK(j["eta"] == 93);
   CHECK(j["last_paused_before"] == 12);
+  CHECK(j["resets"] == 1);
+  CHECK(j["redone_mm"] == Approx(3.1));
   CHECK(j["temperatures"] == "T:205.00 /205.00 B:60.00 /60.00");
   s.percent = -1;
   s.eta = -1;
@@ -39,6 +43,7 @@ TEST_CASE("progress: the status JSON parses and names what the line shows", "[se
   CHECK(line.find("layer 12/40") != std::string::npos);
   CHECK(line.find("ETA") == std::string::npos);
   CHECK(line.find("last pause 2.9 mm") != std::string::npos);
+  CHECK(line.find("1 reset (3.1 mm again)") != std::string::npos);
 }
 
 TEST_CASE("progress: the ETA from the estimator, paced by the print so far", "[serial]") {

@@ -41,6 +41,7 @@ std::string progress_line(const ProgressSnapshot& s) {
   if (s.speed != 1) line += fmt::format("  speed x{:g}", s.speed);
   if (!s.temperatures.empty()) line += fmt::format("  {}", s.temperatures);
   if (s.last_pause_mm >= 0) line += fmt::format("  last pause {:.1f} mm {:.2f} s", s.last_pause_mm, s.last_pause_s);
+  if (s.resets > 0) line += fmt::format("  {} reset{} ({:.1f} mm again)", s.resets, s.resets > 1 ? "s" : "", s.redone_mm);
   return line;
 }
 
@@ -49,9 +50,11 @@ std::string progress_json(const ProgressSnapshot& s) {
   return fmt::format(
       "{{\"state\": \"{}\", \"layer\": {}, \"layers\": {}, \"percent\": {}, \"lines\": {}, \"lines_per_second\": {:.1f}, "
       "\"elapsed\": {:.3f}, \"eta\": {}, \"speed\": {:g}, \"pauses\": {}, \"last_pause_mm\": {}, \"last_pause_s\": {}, "
-      "\"last_pause_layer\": {}, \"last_paused_before\": {}, \"temperatures\": \"{}\"}}\n",
+      "\"last_pause_layer\": {}, \"last_paused_before\": {}, \"resets\": {}, \"redone_mm\": {:.1f}, "
+      "\"temperatures\": \"{}\"}}\n",
       s.state, s.layer, s.layers, num(s.percent), s.lines, s.lines_per_second, s.elapsed, num(s.eta), s.speed, s.pauses,
-      num(s.last_pause_mm), num(s.last_pause_s), s.last_pause_layer, s.last_paused_before, s.temperatures);
+      num(s.last_pause_mm), num(s.last_pause_s), s.last_pause_layer, s.last_paused_before, s.resets, s.redone_mm,
+      s.temperatures);
 }
 
 Progress::Progress(ProgressOptions options) : options_(std::move(options)) {}

@@ -57,6 +57,9 @@ void print_summary(const Sender& sender, const VirtualPrinter* printer, const Pr
   if (s.shortened > 0) input += fmt::format(", shortened {}", s.shortened);
   if (s.skipped > 0) input += fmt::format(", left out {}", s.skipped);
   if (control.swaps() > 0) input += fmt::format(", swaps {}", control.swaps());
+  if (s.resets > 0)
+    input += fmt::format(", printer resets {} ({} moves, {:.1f} mm may have printed twice)", s.resets, s.redone_moves,
+                         s.redone_mm);
   fmt::print(stderr,
              "gc-send: summary: lines {}, time {:.3f} s, {:.0f} lines/s, {}, flow {}, resends {}, errors {}, "
              "overdue answers {}, timeouts {}{}\n",

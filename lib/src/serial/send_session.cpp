@@ -469,6 +469,8 @@ ProgressSnapshot SendSession::snapshot() const {
   if (s.eta < 0 && s.percent > 1 && s.elapsed > 0) s.eta = s.elapsed * (100 - s.percent) / s.percent;
   s.speed = control_->speed();
   s.temperatures = sender_.temperatures();
+  s.resets = static_cast<int>(st.resets);
+  s.redone_mm = st.redone_mm;
   s.pauses = static_cast<int>(control_->pauses().size());
   if (!control_->pauses().empty()) {
     s.last_pause_mm = control_->pauses().back().latency_mm;

@@ -25,6 +25,8 @@ struct ProgressSnapshot {
   double last_pause_s = -1;
   int last_pause_layer = 0;     // the layer the last pause was asked in
   int last_paused_before = 0;   // the layer it paused before (0: mid-layer)
+  int resets = 0;               // printer resets the print came back from
+  double redone_mm = 0;         // what may have printed twice after them, mm
 };
 
 enum class ProgressMode : std::uint8_t { Off, Live, Plain };
