@@ -168,3 +168,35 @@ TEST_CASE("gc-send --resume after kill -9, and the printer resets during the res
   CHECK(r.err.find("the printer reset (it said \"start\")") != std::string::npos);
   CHECK(require_resumed(gctest::read_file(dir + "/executed.log"), expected).resets == 1);
 }
+
+TEST_CASE("gc-send --resume of a print killed while paused goes back into the pause, the printer kept running or reset",
+          "[gc-send][reset][resume][pause]") {
+  auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
+  for (bool reset : {false, true}) {
+    INFO((reset ? "reset" : "kept running"));
+    std::string dir = gctest::temp_dir();
+    std::string status = dir + "/status.json", fifo = dir + "/control";
+    std::string wait_paused = "for i in $(seq 1000); do grep -q '\"paused\"' " + quote(status) +
+                              " 2>/dev/null && break; sleep 0.01; done\n";
+    std::string control = " --rush 1 --status-file " + quote(status) + " --control " + quote(fifo) + " ";
+    std::string port = dir + "/printer", journal = dir + "/print.journal";
+    std::string send = quote(tool_path("gc-send")) + " --port " + quote(port) + " --journal " + quote(journal) + control;
+    std::string script =
+        quote(tool_path("gc-virtual-printer")) + " -q --time-scale 20 --heat-rate 1000 --link " + quote(port) +
+        " --log " + quote(dir + "/executed.log") + " & vp=$!\n" +
+        "for i in $(seq 500); do [ -e " + quote(port) + " ] && break; sleep 0.01; done\n" + send + " -q " +
+        quote(pieces_file()) + " 2>/dev/null & gs=$!\nsleep 1; echo pause now > " + quote(fifo) + "\n" + wait_paused +
+        "sleep 0.5; kill -9 $gs; wait $gs 2>/dev/null; rm -f " + quote(status) + "\n" +
+        (reset ? "kill -USR1 $vp; sleep 0.3\n" : "") + send + " --resume " + quote(journal) + " " +
+        quote(pieces_file()) + " & gs=$!\n" + wait_paused + "kill -0 $gs && timeout 10 sh -c 'echo resume > " +
+        quote(fifo) + "'\n" +
+        "wait $gs; s=$?; kill $vp; wait $vp; exit $s";
+    auto r = run(script);
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    CHECK(r.err.find("the print was paused after input line ") != std::string::npos);
+    gctest::ResetFigures f = require_resumed(gctest::read_file(dir + "/executed.log"), expected, 20, true);
+    CHECK(f.resets == (reset ? 1 : 0));
+    CHECK(f.redone_moves == 0);  // parked: every move before the pause had run
+  }
+}

@@ -125,6 +125,26 @@ TEST_CASE("journal: every point, the acknowledged line and the end read back", "
   CHECK(c.at_or_before(50)->point == point(49));
 }
 
+TEST_CASE("journal: commands taken back unsent and numbered again replace their first records", "[serial][journal]") {
+  // A pause now: lines 4 and 5 were numbered, taken back before they went
+  // out, and the pause block went out as 4, 5, 6; then 4 and 5 again as 7, 8.
+  std::string path = gctest::temp_dir() + "/t.journal";
+  {
+    JournalWriter w({path}, header());
+    for (int i : {1, 2, 3, 4, 5}) w.sent(static_cast<std::uint64_t>(i), point(i));
+    for (int i : {4, 5, 6}) w.sent(static_cast<std::uint64_t>(i), point(100 + i));
+    for (int i : {7, 8}) w.sent(static_cast<std::uint64_t>(i), point(i - 3));
+    w.flush(0);
+  }
+  JournalContents c = read_journal(path);
+  REQUIRE(c.entries.size() == 8);
+  for (std::size_t k = 0; k < 8; ++k) CHECK(c.entries[k].n == k + 1);
+  CHECK(c.entries[2].point == point(3));
+  CHECK(c.entries[3].point == point(104));  // the block's, rebuilt from the taken-back line's delta
+  CHECK(c.entries[5].point == point(106));
+  CHECK(c.entries[7].point == point(5));
+}
+
 TEST_CASE("journal: synced at least every interval and at once when asked", "[serial][journal]") {
   std::string path = gctest::temp_dir() + "/sync.journal";
   JournalWriter w({path}, header());

@@ -243,6 +243,9 @@ bool apply_record(JournalContents& c, const JournalRecord& r, const std::string&
       JournalFields changes = r.fields;
       changes.erase("n");
       e.point.update(changes);
+      // A number given again: the commands numbered from it on were taken
+      // back before they were sent (a pause now, a cancel) and never ran.
+      while (!c.entries.empty() && c.entries.back().n >= e.n) c.entries.pop_back();
       c.entries.push_back(std::move(e));
       return true;
     }

@@ -246,13 +246,19 @@ std::vector<TakeBackLedger::Entry> PrintControl::rewind(std::size_t n) {
   return taken;
 }
 
-void PrintControl::pause_here(const MachineState& at) {
-  PauseRecord& r = pauses_.current();
+// The pause's options with {layer} and {z} filled in for a stop at `at`.
+PauseConfig PrintControl::pause_config(const MachineState& at) const {
   PauseConfig c = config_.pause;
   char zt[kMaxNumberChars];
   Placeholders values{{"layer", std::to_string(std::max(layer_, 1))}, {"z", std::string(number_text(at.position[kZ], 3, zt))}};
   for (std::string* text : {&c.message, &c.host_message, &c.before_wait, &c.after_wait})
     *text = expand_placeholders(*text, values);
+  return c;
+}
+
+void PrintControl::pause_here(const MachineState& at) {
+  PauseRecord& r = pauses_.current();
+  PauseConfig c = pause_config(at);
   PauseBlock block;
   std::string note;
   try {
@@ -269,11 +275,13 @@ void PrintControl::pause_here(const MachineState& at) {
   r.block_number = sender_.last_submitted() + 1;
   r.block = true;
   if (probe_.watch) probe_.watch(r.block_number);
-  submit_lines(block.pause, layer_);
   MachineState parked = at;
   for (const std::string& l : block.pause) track(l, parked);
+  // Paused before the block is numbered: the journal's records of it say
+  // so, and a resume goes back into the pause.
   stop_at(at, parked, true);
   stop_.resume_lines = std::move(block.resume);
+  submit_lines(block.pause, layer_);
   diag_.info(fmt::format("{}: pause block sent after input line {} (asked in layer {}); waiting for resume",
                          r.request, last_source_, r.layer));
 }

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "gcode/core/file_io.hpp"
+#include "gcode/core/number.hpp"
 #include "gcode/pipeline/pipeline.hpp"
 #include "gcode/report/layer_time.hpp"
 #include "gcode/serial/event_loop.hpp"
@@ -245,6 +246,20 @@ void go_on(Sender& sender, const ResumeStart& start, bool quiet) {
                plan.redone_moves, plan.redone_mm);
 }
 
+// The control as the journal left it: the live speed, and the pause the
+// print stood in.
+void back_into_control(PrintControl& control, const ResumeStart& start, bool quiet) {
+  double speed = 1;
+  if (!parse_number(start.point.get("speed", "1"), speed)) speed = 1;
+  control.restore_speed(speed);
+  if (!start.paused) return;
+  control.resume_into_pause(start.paused->at, start.plan.state, start.paused->track.retracted,
+                            start.paused->track.top_z);
+  if (!quiet)
+    fmt::print(stderr, "gc-send: the print was paused after input line {}: parked, waiting for resume\n",
+               start.plan.input_line);
+}
+
 }  // namespace
 
 int run_send_job(SendJob& job, Diagnostics& diag) {
@@ -293,15 +308,16 @@ int run_send_job(SendJob& job, Diagnostics& diag) {
   sender.set_trace(trace || log != nullptr);
   SendSession session(loop, sender, input.fd(), port.fd, diag,
                       job.layer_marker.empty() ? LayerMarkers() : LayerMarkers(job.layer_marker));
+  std::optional<ResumeStart> start;
   if (resume) {
     ResumeLimits limits;
     limits.can_home_xy_alone = config.home_xy_alone;
-    ResumeStart start = begin_resume(*resume, port.fd, session, std::max(30.0, config.timeout), limits, trace_line);
+    start = begin_resume(*resume, port.fd, session, std::max(30.0, config.timeout), limits, trace_line);
     journal = std::make_unique<SendJournal>(JournalOptions{.path = job.journal_path}, identify_input(name, input.fd()),
                                             job.port);
-    journal->continue_after(start.last, start.point);
+    journal->continue_after(start->last, start->point);
     session.set_journal(journal.get());
-    go_on(sender, start, job.quiet);
+    go_on(sender, *start, job.quiet);
   } else if (journal) {
     session.set_journal(journal.get());
   }
@@ -312,6 +328,7 @@ int run_send_job(SendJob& job, Diagnostics& diag) {
   // stream is past its header.
   int e_relative = resume ? -1 : session.read_e_mode(job.e_mode, input.name());
   session.set_control(control, job.control_path);
+  if (start) back_into_control(*session.control(), *start, job.quiet);
   if (!port.printer) session.set_reconnect(job.port, PortOptions{job.baud, false}, job.reconnect);
   ProgressOptions progress = job.progress;
   if (job.quiet) progress.mode = ProgressMode::Off;  // the status file is still kept

@@ -1,10 +1,12 @@
 #include "gcode/serial/send_resume.hpp"
 
 #include <algorithm>
+#include <limits>
 
 #include <fmt/format.h>
 
 #include "gcode/serial/input_identity.hpp"
+#include "gcode/serial/journal_point.hpp"
 #include "gcode/serial/journal_header.hpp"
 #include "gcode/serial/printer_probe.hpp"
 #include "gcode/serial/send_session.hpp"
@@ -21,6 +23,51 @@ std::string shell_word(const std::string& s) {
   std::string out = "'";
   for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return out + "'";
+}
+
+// The print stood paused (its pause block had gone out): the printer is
+// taken to where the block left it, and the print waits for `resume`
+// there. The stop is the newest command of the input before the block.
+void into_pause(const JournalContents& journal, ResumeStart& r) {
+  const std::vector<JournalEntry>& entries = journal.entries;
+  std::size_t stop = entries.size();
+  while (stop > 0 && entries[stop - 1].point.get("own") == "1") --stop;
+  if (stop == 0) throw ResumeError("cannot resume: the journal holds the pause block but not where the print stopped");
+  ResumePlan& plan = r.plan;
+  std::string problem;
+  if (plan.condition == PrinterCondition::KeptRunning && plan.entry + 1 != entries.size())
+    throw ResumeError(fmt::format("cannot resume: gc-send stopped while the pause block was going out (the printer "
+                                  "took line {} of it, the journal ends at line {}); the head is not parked",
+                                  r.last, entries.back().n));
+  ResumeStart::Paused paused;
+  if (!read_machine_fields(entries[stop - 1].point, paused.at, problem))
+    throw ResumeError(fmt::format("cannot resume: the journal's record of where the print paused is incomplete: {}",
+                                  problem));
+  paused.track = read_track_fields(entries[stop - 1].point, paused.at);
+  if (plan.condition == PrinterCondition::Reset) {
+    // Back to the parked head, whichever of the block's lines ran: Z is
+    // declared at the highest height the block took it to.
+    plan.entry = entries.size() - 1;
+    MachineState parked;
+    if (!read_machine_fields(entries.back().point, parked, problem))
+      throw ResumeError(fmt::format("cannot resume: the journal's record of the pause block is incomplete: {}", problem));
+    double high = paused.at.position[kZ];
+    for (std::size_t i = stop; i < entries.size(); ++i) {
+      MachineState s;
+      if (read_machine_fields(entries[i].point, s, problem)) high = std::max(high, s.position[kZ]);
+    }
+    plan.state = parked;
+    plan.nozzle_z = high > parked.position[kZ] ? high : std::numeric_limits<double>::quiet_NaN();
+    plan.track = ResumeTrack{paused.track.top_z, 0, 0};  // the filament is where the block left it
+    plan.redone_moves = 0;
+    plan.redone_mm = 0;
+    r.last = static_cast<long long>(entries.back().n);
+    r.point = entries.back().point;
+  }
+  plan.input_line = entries[stop - 1].point.count("line");
+  plan.input_offset = entries[stop - 1].point.count("off");
+  plan.layer = static_cast<int>(entries[stop - 1].point.count("layer"));
+  r.paused = paused;
 }
 
 }  // namespace
@@ -65,16 +112,15 @@ ResumeStart begin_resume(const ResumeSource& source, int port_fd, SendSession& s
     for (const JournalEntry& e : source.journal.entries) highest = std::max(highest, e.n);
     r.next = static_cast<long long>(highest) + 1;
   }
-  if (r.plan.paused)
-    throw ResumeError("cannot resume: the print was paused when it stopped (a resume into the pause is not done yet)");
-  if (r.point.get("own") == "1")
+  if (source.journal.entries.back().point.get("paused") == "1") into_pause(source.journal, r);
+  if (r.point.get("own") == "1" && !r.paused)
     throw ResumeError(fmt::format("cannot resume: the printer stopped inside a block of gc-send's own (line {}, state "
                                   "{}), not at a line of the input",
                                   r.last, r.point.get("state")));
   if (!r.point.get("swap").empty())
     throw ResumeError("cannot resume: the print had swapped to another file (a resume of a swap is not done yet)");
   std::uint64_t hoff = r.point.count("hoff");
-  session.skip_printed(r.plan.input_offset, hoff, r.plan.input_line, r.plan.layer, r.plan.state);
+  session.skip_printed(r.plan.input_offset, hoff, r.plan.input_line, r.plan.layer, r.paused ? r.paused->at : r.plan.state);
   if (session.skipped_bytes() < r.plan.input_offset)
     throw ResumeError(fmt::format("cannot resume: the input ends after {} bytes, before the {} printed",
                                   session.skipped_bytes(), r.plan.input_offset));

@@ -149,6 +149,9 @@ void SendSession::set_journal(SendJournal* journal) {
   if (journal_ == nullptr) return;
   sender_.set_journal_hooks(
       [this](const Sender::Numbered& c) {
+        // A pause block is numbered inside the control's call: its lines
+        // carry the pause state it set.
+        note_live_control();
         journal_->numbered(c.n, c.source_line, c.layer, *c.after, *c.track, c.restore);
       },
       [this](long long n) { journal_->acknowledged(n); });
@@ -487,14 +490,17 @@ void SendSession::report(bool force) {
   next_report_ = now + progress_->interval();
 }
 
+void SendSession::note_live_control() {
+  if (journal_ == nullptr || control_ == nullptr) return;
+  LiveControl live;
+  live.speed = control_->speed();
+  live.state = control_->state_label();
+  live.paused = control_->state() == PrintState::Paused;
+  journal_->live(live);
+}
+
 void SendSession::update() {
-  if (journal_ != nullptr) {
-    LiveControl live;
-    live.speed = control_->speed();
-    live.state = control_->state_label();
-    live.paused = control_->state() == PrintState::Paused;
-    journal_->live(live);
-  }
+  note_live_control();
   feed_input();
   sender_.pump(EventLoop::now());
   flush_port();

@@ -104,6 +104,9 @@ void Sender::printer_reset(std::string_view how, double now) {
     const Slot& t = slot(back);
     ResetResume way{t.after, t.track.top_z, std::max(z_high, t.after.position[kZ]), t.track.retracted,
                     t.track.retraction};
+    // Inside a block of gc-send's own (a pause's): the filament is where the
+    // block left it, its way back primes.
+    if (t.source_line == 0) way.retracted = way.prime = 0;
     // Where the nozzle stopped is known to be one of those heights only:
     // the highest is taken (too high prints into the air for a layer; too
     // low would push the nozzle into the part).

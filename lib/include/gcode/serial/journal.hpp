@@ -113,7 +113,9 @@ struct JournalEntry {
 
 struct JournalContents {
   JournalFields header;
-  std::vector<JournalEntry> entries;  // oldest first
+  // Oldest first, numbers rising: a command numbered again replaces those
+  // numbered from it on (they were taken back unsent).
+  std::vector<JournalEntry> entries;
   std::uint64_t acknowledged = 0;     // 0: none
   bool finished = false;
   bool torn_tail = false;             // the last line was cut short (a crash while writing)

@@ -123,6 +123,16 @@ class PrintControl {
   std::function<void(std::unique_ptr<JoinStream> next, int layers_done)> on_swap;
   const SeamOptions& seam_options() const { return config_.seam; }
   std::uint64_t swaps() const { return swaps_; }
+  // gc-send --resume of a print that stood paused (print_control_journal.cpp):
+  // the printer stands `parked` (the journal's state after the pause block
+  // and anything typed), the print stopped at `at` (with `retracted` mm of
+  // its own retraction pending and `top_z` printed). The control waits for
+  // `resume`, whose way back is the pause block's for `at` from there.
+  void resume_into_pause(const MachineState& at, const MachineState& parked, double retracted, double top_z);
+  // The `speed F` the print had (the journal's), before anything is sent.
+  void restore_speed(double factor) {
+    if (factor > 0 && factor != 1) set_speed(factor);
+  }
   // Wall seconds the printer stood paused (the block done until the resume),
   // the pause going on included.
   double paused_seconds(double now) const;
@@ -154,6 +164,7 @@ class PrintControl {
   void request_pause(std::string request, bool now);
   void finish_pausing(const MachineState& at);
   void pause_here(const MachineState& at);
+  PauseConfig pause_config(const MachineState& at) const;
   void hold_here(std::string request);
   void stop_at(const MachineState& at, const MachineState& resume_from, bool own_block);
   void resume();

@@ -8,6 +8,7 @@
 // print is sent.
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -41,6 +42,14 @@ struct ResumeStart {
   long long last = 0;      // the journal's number of the command the print goes on after
   JournalFields point;     // the journal's record of it
   bool greeted = false;    // a reset: the printer greeted (else its line numbers were back at 0)
+  // The print stood paused: where it stopped (the pipeline goes on from
+  // there once resumed) and what it had printed; the plan's state is the
+  // parked head's.
+  struct Paused {
+    MachineState at;
+    ResumeTrack track;
+  };
+  std::optional<Paused> paused;
 };
 
 // Asks the printer on `port_fd`, plans, and skips the printed part of the

@@ -118,6 +118,7 @@ class SendSession : private Stage {
   std::string_view state_label() const;
   void on_signal();
   void update();
+  void note_live_control();
   void report(bool force);
   ProgressSnapshot snapshot() const;
 
