@@ -10,6 +10,7 @@
 // with the gc-relayer recipe, nothing more sent.
 #include <catch2/catch.hpp>
 
+#include <random>
 #include <string>
 
 #include "pty_run.hpp"
@@ -198,5 +199,19 @@ TEST_CASE("gc-send --resume of a print killed while paused goes back into the pa
     gctest::ResetFigures f = require_resumed(gctest::read_file(dir + "/executed.log"), expected, 20, true);
     CHECK(f.resets == (reset ? 1 : 0));
     CHECK(f.redone_moves == 0);  // parked: every move before the pause had run
+  }
+}
+
+TEST_CASE("gc-send: printer resets at seeded random moments: each print comes back and finishes",
+          "[gc-send][reset]") {
+  auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
+  std::mt19937 rng(22);
+  std::uniform_int_distribution<int> line(5, static_cast<int>(expected.size()) - 50);
+  for (int round = 0; round < 4; ++round) {
+    const std::string fault = "reset@line=" + std::to_string(line(rng));
+    PtyRun r = send_through_pty(pieces_file(), "--no-journal", kPrinter + "--fault " + fault);
+    INFO(fault << ": " << r.result.err);
+    REQUIRE(r.result.status == 0);
+    CHECK(require_resumed(r.log_text, expected).resets == 1);
   }
 }

@@ -528,7 +528,10 @@ void Sender::on_action(std::string_view action) {
 // what the printer had queued: the print goes back to the last command
 // that surely ran (sender_reset.cpp).
 void Sender::on_start(std::string_view text, double now) {
-  if (state_ == SenderState::Handshake) {
+  if (state_ == SenderState::Handshake || state_ == SenderState::Capabilities) {
+    // (After M110 was answered: it restarted again, and forgot it.)
+    state_ = SenderState::Handshake;
+    caps_answered_ = false;
     send_unnumbered(handshake_line(), false, false);
   } else if (state_ == SenderState::Printing) {
     printer_reset(fmt::format("it said \"{}\"{}", text, relink_ != Relink::None ? " while its port was away" : ""),
