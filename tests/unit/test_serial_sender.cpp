@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "gcode/core/firmware.hpp"
 #include "gcode/serial/protocol.hpp"
 #include "gcode/serial/sender.hpp"
 #include "gcode/serial/virtual_printer.hpp"
@@ -40,6 +41,7 @@ struct Outcome {
   VirtualPrinterStats printer;
   SenderStats sender;
   Position last_acked;
+  std::string flavour;  // the firmware description the sender ended with
   double seconds = 0;  // simulated
 };
 
@@ -105,6 +107,7 @@ Outcome simulate(const std::vector<std::string>& commands, SenderConfig sc, Virt
     o.printer = printer.stats();
     o.sender = sender.stats();
     o.last_acked = sender.last_acknowledged();
+    o.flavour = std::string(sender.flavour().name);
     o.seconds = t;
   }
   std::fclose(log);
@@ -403,4 +406,60 @@ TEST_CASE("sender: pacing (no more moves ahead than the planner holds) delivers 
   CHECK(b.seconds < a.seconds * 1.01);
   CHECK(b.printer.starved <= a.printer.starved + 0.005 * b.seconds);
   CHECK(b.printer.overrun_bytes == 0);
+}
+
+TEST_CASE("sender: Marlin variants, a Resend without its ok and wait when idle: exact, no timeout", "[serial][flavour]") {
+  auto commands = fixture_commands("prusa_cube_0.2_mk3s_rel_zhop.gcode", 3000);
+  VirtualPrinterConfig pc;
+  pc.corrupt = 0.02;
+  pc.resend_ok = false;  // "Resend: n" and nothing after it
+  pc.idle_wait = 1;      // NO_TIMEOUTS: "wait" every second while idle
+  pc.heat_rate = 1000;
+  Outcome o = simulate(commands, SenderConfig{}, pc);
+  require_exact(o, commands);
+  CHECK(o.sender.resend_requests > 10);
+  CHECK(o.sender.timeouts == 0);
+  CHECK(o.flavour == "marlin2");
+}
+
+TEST_CASE("sender: Klipper, Prusa and RepRapFirmware detected from M115, every command once, no timeout",
+          "[serial][flavour]") {
+  auto commands = fixture_commands("prusa_cube_0.2_mk3s_rel_zhop.gcode", 3000);
+  for (const char* firmware : {"klipper", "prusa", "rrf"}) {
+    INFO(firmware);
+    VirtualPrinterConfig pc;
+    pc.firmware = firmware;
+    pc.heat_rate = 1000;
+    pc.report_link = false;
+    Outcome o = simulate(commands, SenderConfig{}, pc);
+    INFO("overrun bytes " << o.printer.overrun_bytes << ", drained " << o.printer.drained_bytes << ", stray oks "
+                          << o.sender.stray_oks);
+    require_exact(o, commands);
+    CHECK(o.sender.timeouts == 0);
+    CHECK(o.flavour == gcode::find_firmware(firmware)->name);
+  }
+}
+
+TEST_CASE("sender: Prusa's M600 and its own pause wait for the user, no timeout however long", "[serial][flavour]") {
+  std::vector<std::string> commands = {"G28", "G1 X10 Y10 F3000", "M600", "G1 X20", "M601", "G1 X30", "G1 X40"};
+  VirtualPrinterConfig pc;
+  pc.firmware = "prusa";
+  pc.user_seconds = 600;  // ten minutes for each
+  SenderConfig sc;
+  sc.timeout = 2;
+  Outcome o = simulate(commands, sc, pc);
+  require_exact(o, commands);
+  CHECK(o.sender.timeouts == 0);
+  CHECK(o.seconds > 1200);
+}
+
+TEST_CASE("sender: on Klipper a port that comes back ends the print, saying why", "[serial][flavour]") {
+  auto commands = fixture_commands("prusa_cube_0.2_mk3s_rel_zhop.gcode", 400);
+  VirtualPrinterConfig pc;
+  pc.firmware = "klipper";
+  pc.heat_rate = 1000;
+  parse_virtual_options("drop=2@line=200", pc);
+  Outcome o = simulate(commands, SenderConfig{}, pc);
+  CHECK(o.state == SenderState::Failed);
+  CHECK(o.failure.find("klipper does not number lines") != std::string::npos);
 }

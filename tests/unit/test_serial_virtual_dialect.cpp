@@ -149,3 +149,18 @@ TEST_CASE("virtual RepRapFirmware: rs after a bad line, Error: lines before thei
   p.receive(numbered(4, "G4 S5"), 3);
   CHECK(answers(p, 8.1) == Lines{"ok"});  // 5 s without a word
 }
+
+TEST_CASE("virtual Marlin variants: a Resend without its ok, wait when idle", "[serial][dialect]") {
+  VirtualPrinterConfig c;
+  c.resend_ok = false;
+  c.idle_wait = 1;
+  VirtualPrinter p(c);
+  CHECK(answers(p, 0.5) == Lines{"start"});
+  CHECK(answers(p, 1.01) == Lines{"wait"});
+  p.receive("M110 N0\nN2 G90*99\n", 1.5);
+  CHECK(answers(p, 2) == Lines{"ok", "Error:Line Number is not Last Line Number+1, Last Line: 0", "Resend: 1"});
+  CHECK(answers(p, 2.4).empty());  // a second after the last command
+  CHECK(answers(p, 2.6) == Lines{"wait"});
+  p.receive("G4 P3000\n", 2.6);
+  CHECK(answers(p, 4.7) == Lines{"echo:busy: processing"});  // not idle: no wait
+}

@@ -49,6 +49,11 @@ int main(int argc, char** argv) {
       ->type_name("X");
   app.add_flag("--advanced-ok", c.advanced_ok, "Answer \"ok N<n> P<planner free> B<queue free>\"");
   app.add_flag("--instant-moves", c.instant_moves, "Moves take no time: only the link limits the speed");
+  bool no_resend_ok = false;
+  app.add_flag("--no-resend-ok", no_resend_ok, "No ok after \"Resend: n\" (Marlin sends one; some firmwares none)");
+  app.add_option("--idle-wait", c.idle_wait,
+                 "Say \"wait\" every S simulated seconds while idle, as Marlin with NO_TIMEOUTS (default 0: never)")
+      ->type_name("S");
   bool no_link_report = false;
   app.add_flag("--no-link-report", no_link_report,
                "M115 does not name the simulated BAUD and TIME_SCALE, as a real firmware behind a pty");
@@ -79,9 +84,10 @@ int main(int argc, char** argv) {
     parse_virtual_options(opts + "firmware=" + c.firmware, c);
     c.greeting = parse_greeting_form(greeting);
     if (no_link_report) c.report_link = false;
+    if (no_resend_ok) c.resend_ok = false;
     if (c.baud < 50 || c.queue < 1 || c.rx_buffer < 16 || c.max_line < 16 || c.planner < 1 || !(c.time_scale > 0) ||
         !(c.speed_factor > 0) || !(o.drop_seconds >= 0) ||
-        !(c.user_seconds >= 0))
+        !(c.user_seconds >= 0) || !(c.idle_wait >= 0))
       throw gcode::cli::UsageError(
           "--baud, --queue, --rx-buffer, --max-line, --planner, --time-scale, --speed-factor, --drop-seconds and "
           "--user-seconds need sensible values");

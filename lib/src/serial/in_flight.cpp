@@ -18,7 +18,7 @@ InFlight::Answer InFlight::answer_to(const Response& r, bool numbered_oks) const
     // wait for an answer already taken.
     auto last = it;
     while (last + 1 != entries_.end() && (last + 1)->number < 0) ++last;
-    return {Kind::Through, static_cast<std::size_t>(last - entries_.begin())};
+    return {Kind::Through, static_cast<std::size_t>(last - entries_.begin()), static_cast<std::size_t>(last - it)};
   }
   if (numbered_oks) {
     // ADVANCED_OK: "ok N<n>" answers line n, so everything sent before it is

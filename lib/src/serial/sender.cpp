@@ -315,7 +315,18 @@ void Sender::on_ok(const Response& r, double now) {
   if (resend_.take_rejected_ok()) return;
   probes_.answered();
   idle_hint_ = false;
+  // The answer of a question taken with an earlier one's (InFlight::Answer::
+  // written_off): taken for a newer question, it would acknowledge lines
+  // the printer has not run yet (a firmware whose oks wait, as Klipper's
+  // while 2 s of motion are queued, draws several questions in a row).
+  if (r.has_temperature && written_off_ > 0) {
+    --written_off_;
+    ++stats_.stray_oks;
+    fill(now);
+    return;
+  }
   const InFlight::Answer answer = flight_.answer_to(r, flow_.ok_numbers_acknowledge());
+  written_off_ += answer.written_off;
   switch (answer.kind) {
     case InFlight::Answer::Kind::Stray: ++stats_.stray_oks; break;
     case InFlight::Answer::Kind::Through: acknowledge_through(answer.index, now); break;
@@ -350,6 +361,9 @@ bool Sender::answers_handshake(const Response& r, double now) {
 
 void Sender::on_resend(long long n, double now) {
   resend_.expect_rejected_ok();
+  // A bad line empties Marlin's receive buffer: our questions behind it are
+  // gone, so are the answers written off with them.
+  written_off_ = 0;
   idle_hint_ = false;
   if (state_ != SenderState::Printing) return;
   if (relink_ == Relink::Probing) {
@@ -423,9 +437,14 @@ void Sender::detect_flavour() {
 
 void Sender::on_line(std::string_view text, double now) {
   if (trace_) log(LogLevel::Trace, 0, fmt::format("<- {} @{:.6f}", text, now));
-  last_any_rx_ = now;
-  resend_.heard(now);
   Response r = parse_response(text);
+  // Marlin's "wait" (NO_TIMEOUTS) says the printer is idle with an empty
+  // buffer: the link is as quiet as it gets (the handshake's quiet start and
+  // a resend's settling must not wait for it to stop).
+  if (r.kind != ResponseKind::Wait) {
+    last_any_rx_ = now;
+    resend_.heard(now);
+  }
   note_temperatures(r, text);
   if (relink_ == Relink::Locating && position_asked_ && check_position(text, now)) return;
   if (r.kind != ResponseKind::Ok && r.kind != ResponseKind::Resend && r.kind != ResponseKind::Empty)

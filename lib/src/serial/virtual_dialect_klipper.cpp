@@ -39,6 +39,7 @@ class KlipperDialect final : public ReplyDialect {
       k.checks_line_numbers = false;
       k.busy_keepalive = false;
       k.buffer_seconds = 2.0;  // toolhead.py buffer_time_high
+      k.reads_everything = true;
       k.moves_need_homing = true;
       k.shutdown_answers = true;
       k.report_on_ok = true;

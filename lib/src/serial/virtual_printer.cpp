@@ -25,6 +25,7 @@ constexpr double kAmbient = 20.0;
 VirtualPrinter::VirtualPrinter(const VirtualPrinterConfig& config, std::FILE* log)
     : config_(config), log_(log), wire_(config.baud), schedule_(config.scheduled), rng_(config.seed) {
   if (const ReplyDialect* d = find_dialect(config.firmware)) dialect_ = d;
+  next_idle_wait_ = config.idle_wait;
   if (std::string hello = dialect_->greeting(); !hello.empty()) send(hello);
 }
 
@@ -65,7 +66,7 @@ double VirtualPrinter::next_event() const {
     default: break;
   }
   if (wait_ != Wait::None && wait_ != Wait::Heating) t = std::min(t, next_busy_);
-  t = std::min(t, next_report_);
+  t = std::min({t, next_report_, idle_wait_at()});
   return std::min({t, link_up_at_, schedule_.next_time()});
 }
 
@@ -79,7 +80,7 @@ void VirtualPrinter::advance(double now) {
         t_fw = std::min(t_fw, wait_until_);
       if (wait_ == Wait::Heating) t_fw = std::min(t_fw, heat_done_time());
       if (wait_ != Wait::None && wait_ != Wait::Heating) t_fw = std::min(t_fw, next_busy_);
-      t_fw = std::min({t_fw, next_report_, link_up_at_, schedule_.next_time()});
+      t_fw = std::min({t_fw, next_report_, idle_wait_at(), link_up_at_, schedule_.next_time()});
     }
     double t = std::min(t_wire, t_fw);
     if (t > now || t == kNever) break;
@@ -99,6 +100,10 @@ void VirtualPrinter::advance(double now) {
       bool heating = wait_ == Wait::Heating;
       send(dialect_->temperatures(temperatures(), heating));
       next_report_ = heating ? t + 1 : (autoreport_ > 0 ? t + autoreport_ : kNever);
+    }
+    if (idle_wait_at() <= t) {
+      send(dialect_->idle());
+      next_idle_wait_ = t + config_.idle_wait;
     }
     if (link_up_at_ <= t) link_up(t);
     for (ScheduledFault f; schedule_.take_due(t, f);) fire(f, t);
@@ -125,14 +130,19 @@ void VirtualPrinter::arrive(char c, double t) {
     }
   }
   // Marlin keeps one slot of its ring buffer free.
-  if (rx_.size() - rx_head_ >= static_cast<std::size_t>(config_.rx_buffer - 1)) {
+  if (!dialect_->behaviour().reads_everything &&
+      rx_.size() - rx_head_ >= static_cast<std::size_t>(config_.rx_buffer - 1)) {
     ++stats_.overrun_bytes;
     return;
   }
   rx_ += c;
   // Between commands Marlin reads every byte as it comes (while its queue has
   // room), so a line longer than the RX buffer does not overrun an idle printer.
-  if (wait_ == Wait::None) run(t);
+  if (wait_ == Wait::None) {
+    run(t);
+  } else if (dialect_->behaviour().reads_everything) {
+    parse_rx();
+  }
 }
 
 void VirtualPrinter::update_temperatures(double t) {
@@ -171,7 +181,9 @@ void VirtualPrinter::run(double t) {
 
 void VirtualPrinter::parse_rx() {
   // Marlin's get_serial_commands(): read while the queue has room.
-  while (queue_.size() < static_cast<std::size_t>(config_.queue) && rx_head_ < rx_.size() && !halted_) {
+  const bool everything = dialect_->behaviour().reads_everything;
+  while ((everything || queue_.size() < static_cast<std::size_t>(config_.queue)) && rx_head_ < rx_.size() &&
+         !halted_) {
     char c = rx_[rx_head_++];
     if (c == '\n' || c == '\r') {
       if (!partial_.empty()) {
@@ -199,7 +211,10 @@ void VirtualPrinter::reject(LineFault fault) {
   stats_.drained_bytes += rx_.size() - rx_head_;
   rx_.clear();
   rx_head_ = 0;
-  for (const std::string& answer : dialect_->rejected(fault, last_n_)) send(answer);
+  std::vector<std::string> answers = dialect_->rejected(fault, last_n_);
+  // (Firmwares that send no ok after their resend request.)
+  if (!config_.resend_ok && !answers.empty() && answers.back() == "ok") answers.pop_back();
+  for (const std::string& answer : answers) send(answer);
 }
 
 bool VirtualPrinter::process_line(std::string& line) {
@@ -276,6 +291,14 @@ void VirtualPrinter::push_command(std::string_view text, long long number) {
   cmd.text.assign(text);
   cmd.number = number;
   queue_.push_back(std::move(cmd));
+  next_idle_wait_ = now_ + config_.idle_wait;
+}
+
+// Marlin's NO_TIMEOUTS: "wait" while nothing is queued or arriving, from the
+// last command on.
+double VirtualPrinter::idle_wait_at() const {
+  if (config_.idle_wait <= 0 || !queue_.empty() || rx_head_ < rx_.size() || !partial_.empty()) return kNever;
+  return next_idle_wait_;
 }
 
 void VirtualPrinter::add_block(double duration, double t) {
@@ -552,6 +575,7 @@ void VirtualPrinter::finish(double t) {
   spare_.push_back(std::move(c));
   queue_.pop_front();
   if (spare_.size() > 8) spare_.pop_front();
+  next_idle_wait_ = t + config_.idle_wait;
   wait_ = Wait::None;
   ScheduledFault fault;
   bool due = schedule_.take_after_command(number, started_layer_, fault);

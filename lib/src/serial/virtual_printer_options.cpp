@@ -59,6 +59,10 @@ void parse_virtual_options(std::string_view text, VirtualPrinterConfig& c) {
       c.firmware = std::string(value);
     } else if (key == "user-seconds") {
       c.user_seconds = parse_value(key, value);
+    } else if (key == "resend-ok") {
+      c.resend_ok = parse_flag(key, value);
+    } else if (key == "idle-wait") {
+      c.idle_wait = parse_value(key, value);
     } else if (key == "baud") {
       c.baud = count(50);
     } else if (key == "queue") {

@@ -33,6 +33,9 @@ class InFlight {
     };
     Kind kind = Kind::Stray;
     std::size_t index = 0;
+    // Our questions right behind the one answered, taken with it: their own
+    // answers are still to come, and must not be taken for a later one's.
+    std::size_t written_off = 0;
   };
   // `numbered_oks`: ADVANCED_OK, "ok N<n>" answers line n.
   Answer answer_to(const Response& ok, bool numbered_oks) const;

@@ -354,6 +354,7 @@ class Sender : private TimeSink {
   bool idle_hint_ = false;      // the printer said "wait" (idle) with lines in flight
   ProbeBackoff probes_;
   int learnt_planner_ = 0;      // planner blocks seen in ADVANCED_OK's P
+  std::size_t written_off_ = 0; // answers to come for our M105s taken with an earlier one's
   std::string refusal_;         // why the input stopped early (a line the firmware cannot take)
 
   ResendState resend_;

@@ -42,6 +42,10 @@ struct DialectBehaviour {
   // queued (Klipper's toolhead, buffer_time_high); 0: while the planner has
   // a free block (Marlin).
   double buffer_seconds = 0;
+  // Reads every byte as it comes and queues every line, however many: its
+  // host process reads the pseudo-terminal into a list of its own
+  // (Klipper). false: Marlin's RX buffer and BUFSIZE queue.
+  bool reads_everything = false;
   bool moves_need_homing = false;   // a move before G28 is refused, with its ok (Klipper, RepRapFirmware)
   // Halted, it still answers: every command refused with its ok until
   // FIRMWARE_RESTART (Klipper). false: it says nothing more (Marlin's kill()).
@@ -70,6 +74,8 @@ class ReplyDialect {
   virtual std::vector<std::string> rejected(LineFault fault, long long last_line) const;
   // While a command blocks (Marlin's keepalive).
   virtual std::string busy() const { return "echo:busy: processing"; }
+  // While idle, nothing queued (Marlin's NO_TIMEOUTS; idle_wait).
+  virtual std::string idle() const { return "wait"; }
   // Whether it knows a command (Marlin: every standard one, no extended
   // command); an unknown one gets unknown_command() and its ok.
   virtual bool knows(const Line& line) const;

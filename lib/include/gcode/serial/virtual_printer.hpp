@@ -160,6 +160,7 @@ class VirtualPrinter {
   bool process_M400(double t);
   bool wait_for_planner(double t, After after, double duration);
   bool planner_full(double t) const;
+  double idle_wait_at() const;
   // The firmware's own ways (virtual_printer_flavour.cpp).
   bool refused(const Line& line);
   void drop_head();
@@ -203,6 +204,7 @@ class VirtualPrinter {
   double wait_until_ = 0;
   double next_busy_ = 0;
   double next_report_ = 1e300;  // heating report or M155 autoreport
+  double next_idle_wait_ = 0;   // the next "wait" while idle (idle_wait)
   double autoreport_ = 0;       // M155 interval, 0 = off
   bool heating_bed_ = false;
   double pending_duration_ = 0; // of a move waiting for a planner block

@@ -34,6 +34,8 @@ struct VirtualPrinterConfig {
   // limits above the host's model. time_scale is known to the host; this is not.
   double speed_factor = 1;
   bool advanced_ok = false;   // answer "ok N.. P.. B.."
+  bool resend_ok = true;      // an "ok" follows "Resend: n" (Marlin's does; some firmwares send none)
+  double idle_wait = 0;       // "wait" every this many seconds while idle (Marlin's NO_TIMEOUTS), 0: never
   bool instant_moves = false; // moves take no time: the link is the only limit
   bool report_link = true;    // M115 names TIME_SCALE and BAUD (a real firmware does not)
   double heat_rate = 10;      // degrees per second (the bed heats at a third of it)
@@ -53,7 +55,7 @@ struct VirtualPrinterConfig {
 };
 
 // Applies "key=value,key=value" (the part after "virtual:") to `config`.
-// Keys: firmware user-seconds baud queue rx max-line planner time-scale speed-factor advanced-ok instant-moves
+// Keys: firmware user-seconds resend-ok idle-wait baud queue rx max-line planner time-scale speed-factor advanced-ok instant-moves
 // report-link heat-rate corrupt drop-ok resend garbage busy silent-after
 // halt-after disconnect-after seed log greeting, and scheduled faults
 // (virtual_fault.hpp: "reset@line=N", "drop=S@time=T"). Throws std::invalid_argument naming a bad key or value.
