@@ -57,6 +57,7 @@ void print_summary(const Sender& sender, const VirtualPrinter* printer, const Pr
   std::string input;
   if (s.shortened > 0) input += fmt::format(", shortened {}", s.shortened);
   if (s.skipped > 0) input += fmt::format(", left out {}", s.skipped);
+  if (s.unknown_commands > 0) input += fmt::format(", not taken by the firmware {}", s.unknown_commands);
   if (control.swaps() > 0) input += fmt::format(", swaps {}", control.swaps());
   if (s.resets > 0)
     input += fmt::format(", printer resets {} ({} moves, {:.1f} mm may have printed twice)", s.resets, s.redone_moves,
