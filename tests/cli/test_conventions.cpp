@@ -98,7 +98,7 @@ TEST_CASE("every tool is covered by the conventions tests", "[conventions]") {
   }
 }
 
-TEST_CASE("-i with standard input is a usage error in the common format", "[conventions]") {
+TEST_CASE("conventions: -i with standard input is a usage error in the common format", "[conventions]") {
   // The version and the usage-error format of every tool: tests/consistency.
   for (const auto& [tool, c] : filters()) {
     if (!c.in_place) continue;
@@ -127,7 +127,7 @@ TEST_CASE("a --layer-marker pattern that does not compile is a usage error", "[c
   CHECK(tools >= 5);
 }
 
-TEST_CASE("-i replaces the file only when the run succeeded and leaves no temp file", "[conventions]") {
+TEST_CASE("conventions: -i replaces the file only when the run succeeded and leaves no temp file", "[conventions]") {
   const std::string original = read_file(gctest::fixture_path(kFixture));
   for (const auto& [tool, c] : filters()) {
     if (!c.in_place) continue;

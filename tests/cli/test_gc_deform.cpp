@@ -123,7 +123,7 @@ TEST_CASE("gc-deform output prints on the virtual printer", "[gc-deform][serial]
   CHECK(r.status == 0);
 }
 
-TEST_CASE("gc-deform refuses what cannot print, with the line; -i leaves the file alone", "[gc-deform][errors]") {
+TEST_CASE("gc-deform refuses what cannot print, with the line, -i leaves the file alone", "[gc-deform][errors]") {
   const std::string dir = gctest::temp_dir(), file = dir + "/cup.gcode";
   const std::string cup = shape("helix --diameter 60 --height 3");
   gctest::write_file(file, cup);

@@ -251,7 +251,7 @@ TEST_CASE("errors: missing layer, empty input, no extrusion, bad options", "[gc-
   CHECK(run(gctest::tool_command("gc-layers", "--layer-marker '(' " + quote(path))).status == 2);
 }
 
-TEST_CASE("-i rewrites the file atomically and only on success", "[gc-layers]") {
+TEST_CASE("gc-layers -i rewrites the file atomically and only on success", "[gc-layers]") {
   std::string dir = gctest::temp_dir();
   std::string copy = dir + "/cube.gcode";
   std::string original = read_file(fixture_path("cura_cube_0.2_abs_zhop_skirt.gcode"));

@@ -450,7 +450,7 @@ TEST_CASE("gc-litho --texture on a relative-E non-spiral print works, with a not
   CHECK(changed > 100);
 }
 
-TEST_CASE("gc-litho --texture --types WALL-OUTER paints the outer walls only; -i replaces the file only on success",
+TEST_CASE("gc-litho --texture --types WALL-OUTER paints the outer walls only, -i replaces the file only on success",
           "[gc-litho][texture]") {
   const std::string input = read_file(gctest::fixture_path("cura_cube_0.2_abs_zhop_skirt.gcode"));
   const std::string picture = saved(levels(), "levels.pgm");

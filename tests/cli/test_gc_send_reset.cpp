@@ -61,7 +61,7 @@ TEST_CASE("gc-send: a printer reset mid-layer, at a layer change or in the start
   }
 }
 
-TEST_CASE("gc-send: each form of the greeting is a reset; an absolute-E print gets its E back exactly",
+TEST_CASE("gc-send: each form of the greeting is a reset, an absolute-E print gets its E back exactly",
           "[gc-send][reset]") {
   auto expected = gctest::commands_of(gctest::read_file(absolute_file()));
   for (const char* greeting : {"nul", "twice", "external"}) {
@@ -86,7 +86,7 @@ TEST_CASE("gc-send: a printer that restarted while its port was away comes back 
   CHECK(require_resumed(r.log_text, expected).resets == 1);
 }
 
-TEST_CASE("gc-send: a reset while paused resumes into the pause; the resume returns exactly", "[gc-send][reset][pause]") {
+TEST_CASE("gc-send: a reset while paused resumes into the pause, the resume returns exactly", "[gc-send][reset][pause]") {
   auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
   std::string dir = gctest::temp_dir();
   std::string status = dir + "/status.json", fifo = dir + "/control";

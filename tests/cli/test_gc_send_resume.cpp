@@ -77,7 +77,7 @@ TEST_CASE("gc-send --resume after kill -9: every command of the file once, in or
   require_every_command_once(dir, input);
 }
 
-TEST_CASE("gc-send --resume with the default journal and the journal's file; and a pipeline re-run",
+TEST_CASE("gc-send --resume with the default journal and the journal's file, and a pipeline re-run",
           "[gc-send][resume]") {
   std::string dir = gctest::temp_dir();
   std::string input = subdivided_part(dir);

@@ -90,7 +90,7 @@ TEST_CASE("gc-shape: the header, -o, --start/--end files", "[gc-shape]") {
   CHECK(text.find("M190") == std::string::npos);
 }
 
-TEST_CASE("gc-shape: usage errors exit 2 and name the option; a missing --start file exits 1", "[gc-shape][errors]") {
+TEST_CASE("gc-shape: usage errors exit 2 and name the option, a missing --start file exits 1", "[gc-shape][errors]") {
   for (const char* args : {"", "sphere", "helix --height 0.1", "polygon --sides 2", "helix --tolerance 0.001",
                            "helix --center 1", "helix --diameter -1", "spiral --diameter 10 --inner-diameter 12",
                            "helix --nozzle-temp 500"}) {

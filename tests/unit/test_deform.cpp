@@ -82,7 +82,7 @@ TEST_CASE("the identity reproduces every fixture byte for byte", "[deform]") {
   }
 }
 
-TEST_CASE("Z = 0.3 z: layers 0.3 as thick, E 0.3 as much; arcs become chords; E after the layers shifted", "[deform]") {
+TEST_CASE("Z = 0.3 z: layers 0.3 as thick, E 0.3 as much, arcs become chords, E after the layers shifted", "[deform]") {
   const Deformed d = deform(kPart, xyz("x", "y", "0.3*z"));
   auto map = [](const P3& p) { return P3{p[0], p[1], 0.3 * p[2]}; };
   expect_exact(kPart, d, map, [](const P3&) { return 0.3; }, 0.01);

@@ -45,7 +45,7 @@ TEST_CASE("cylinder frame: the identity and the dish", "[deform]") {
   CHECK(DeformMap(with_width(f, "2")).section({140, 100, 10}) == Approx(2));
 }
 
-TEST_CASE("xyz frame with layer and s; speed", "[deform]") {
+TEST_CASE("xyz frame with layer and s, speed", "[deform]") {
   DeformFormulas f;
   f.map = {"x + layer", "y + s", "z*z"};
   f.speed = "1 + x/100";

@@ -104,7 +104,7 @@ TEST_CASE("reset resume: heat bed then nozzle, declare Z, lift, home X Y only, t
   CHECK(p.bed_target == 60);
 }
 
-TEST_CASE("reset resume: the travel clears a taller part than the nozzle's own height; a retracted target stays so",
+TEST_CASE("reset resume: the travel clears a taller part than the nozzle's own height, a retracted target stays so",
           "[reset_sequence]") {
   ResetResume how;
   how.target = gctest::replay_state("G28\nM104 S200\nM82\nG1 X20 Y20 Z0.6 F3000\nG92 E0\nG1 X30 E1.2\nG1 E0.4\n");
@@ -130,7 +130,7 @@ TEST_CASE("reset resume: the travel clears a taller part than the nozzle's own h
   CHECK_FALSE(p.relative_e);
 }
 
-TEST_CASE("reset resume: refused where it cannot know the way; a delta gets the gc-relayer recipe",
+TEST_CASE("reset resume: refused where it cannot know the way, a delta gets the gc-relayer recipe",
           "[reset_sequence]") {
   ResetResume unknown;
   unknown.target = gctest::replay_state("M104 S200\nG1 X10\n");  // never homed

@@ -48,7 +48,7 @@ TEST_CASE("in flight: ok T: answers through the M105, and our questions right be
   CHECK(lines(3).answer_to(parse_response("ok T:200.0 /200.0"), false).kind == Kind::Stray);
 }
 
-TEST_CASE("in flight: with ADVANCED_OK, ok N<n> answers through line n; an ok without N only a question",
+TEST_CASE("in flight: with ADVANCED_OK, ok N<n> answers through line n, an ok without N only a question",
           "[serial][in_flight]") {
   InFlight f = lines(4, 1);
   InFlight::Answer a = f.answer_to(parse_response("ok N2 P15 B3"), true);

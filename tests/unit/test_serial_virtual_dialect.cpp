@@ -29,7 +29,7 @@ VirtualPrinterConfig flavour(const char* name) {
 
 }  // namespace
 
-TEST_CASE("virtual dialects by name; firmware= and user-seconds= options", "[serial][dialect]") {
+TEST_CASE("virtual dialects by name, firmware= and user-seconds= options", "[serial][dialect]") {
   CHECK(find_dialect("marlin") == &marlin_dialect());
   CHECK(find_dialect("Klipper") == &klipper_dialect());
   CHECK(find_dialect("prusa") == &prusa_dialect());
@@ -74,7 +74,7 @@ TEST_CASE("virtual Klipper: moves answered at once until 2 s of motion are queue
   CHECK(answers(p, 4.6).size() == 1);
 }
 
-TEST_CASE("virtual Klipper: M112 shuts it down; every command refused with its ok until FIRMWARE_RESTART",
+TEST_CASE("virtual Klipper: M112 shuts it down, every command refused with its ok until FIRMWARE_RESTART",
           "[serial][dialect]") {
   VirtualPrinter p(flavour("klipper"));
   p.receive("G28\nM112\n", 0);  // M112 overtakes the homing
@@ -112,7 +112,7 @@ TEST_CASE("virtual Prusa: M601 answers, pauses after the moves, holds commands u
   CHECK(answers(p, 13) == Lines{"// action:resumed", "ok"});
 }
 
-TEST_CASE("virtual Prusa: M600 and M115 U<newer> wait for the user without busy; an older version just ok",
+TEST_CASE("virtual Prusa: M600 and M115 U<newer> wait for the user without busy, an older version just ok",
           "[serial][dialect]") {
   VirtualPrinterConfig c = flavour("prusa");
   c.user_seconds = 40;

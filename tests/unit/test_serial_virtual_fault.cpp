@@ -46,7 +46,7 @@ struct Log {
 
 }  // namespace
 
-TEST_CASE("virtual printer faults parse, with their moments; bad ones are refused", "[serial][virtual_fault]") {
+TEST_CASE("virtual printer faults parse, with their moments, bad ones are refused", "[serial][virtual_fault]") {
   ScheduledFault f = parse_scheduled_fault("reset@line=120");
   CHECK(f.kind == ScheduledFault::Kind::Reset);
   CHECK(f.trigger == ScheduledFault::Trigger::Line);
@@ -140,7 +140,7 @@ TEST_CASE("virtual printer: the greeting of a reset in each form", "[serial][vir
   CHECK(external[1] == "echo: External Reset");
 }
 
-TEST_CASE("virtual printer: during a link drop the board runs on, silent; afterwards it expects the next line",
+TEST_CASE("virtual printer: during a link drop the board runs on, silent, afterwards it expects the next line",
           "[serial][virtual_fault]") {
   Log log;
   VirtualPrinterConfig c;

@@ -70,7 +70,7 @@ TEST_CASE("the header: Cura's box and markers, the parameters, the filament it t
   CHECK(w.text.find(expected) != std::string::npos);
 }
 
-TEST_CASE("given start and end code replace the built-in ones; absolute positions, relative E follow", "[shape]") {
+TEST_CASE("given start and end code replace the built-in ones, absolute positions, relative E follow", "[shape]") {
   ShapeOptions o;
   o.kind = ShapeKind::Circle;
   ShapeGcodeOptions g;

@@ -53,7 +53,7 @@ TEST_CASE("litho options: each mode's configuration, the other mode's options re
   CHECK(err == "gc-test: --width: a cylinder's width is its circumference; give --diameter (see gc-test --help)\n");
 }
 
-TEST_CASE("litho options: --start and --end are read; a missing one is an input error", "[tool_options]") {
+TEST_CASE("litho options: --start and --end are read, a missing one is an input error", "[tool_options]") {
   const std::string dir = gctest::temp_dir();
   gctest::write_file(dir + "/start.gcode", "G28\n");
   gcode::cli::LithoToolOptions o;
