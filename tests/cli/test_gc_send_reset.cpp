@@ -127,7 +127,7 @@ namespace {
 // gc-virtual-printer on a pty in `dir` (`$vp`), gc-send killed with SIGKILL
 // after `seconds`, then `then` (a shell script: $gs is what runs next).
 gctest::RunResult killed_then(const std::string& dir, const std::string& input, double seconds,
-                              const std::string& then) {
+                              const std::string& then, const std::string& resume_args = "") {
   std::string port = dir + "/printer", journal = dir + "/print.journal";
   std::string send = quote(tool_path("gc-send")) + " --port " + quote(port) + " --journal " + quote(journal);
   std::string script =
@@ -135,7 +135,7 @@ gctest::RunResult killed_then(const std::string& dir, const std::string& input, 
       " --log " + quote(dir + "/executed.log") + " & vp=$!\n" +
       "for i in $(seq 500); do [ -e " + quote(port) + " ] && break; sleep 0.01; done\n" + send + " -q " +
       quote(input) + " 2>/dev/null & gs=$!\nsleep " + std::to_string(seconds) + "\nkill -9 $gs; wait $gs 2>/dev/null\n" +
-      then + "\n" + send + " --resume " + quote(journal) + " " + quote(input) + " & gs=$!\n" +
+      then + "\n" + send + " " + resume_args + " --resume " + quote(journal) + " " + quote(input) + " & gs=$!\n" +
       "wait $gs; s=$?; kill $vp; wait $vp; exit $s";
   return run(script);
 }
@@ -214,4 +214,19 @@ TEST_CASE("gc-send: printer resets at seeded random moments: each print comes ba
     REQUIRE(r.result.status == 0);
     CHECK(require_resumed(r.log_text, expected).resets == 1);
   }
+}
+
+TEST_CASE("gc-send --resume --delta after a reset: refused with the gc-relayer recipe, exit 1, nothing sent",
+          "[gc-send][reset][resume]") {
+  std::string dir = gctest::temp_dir();
+  // The printer drains what it took, then resets.
+  auto r = killed_then(dir, pieces_file(), 1.5, "sleep 1; kill -USR1 $vp; sleep 0.3", "--delta");
+  INFO(r.err);
+  CHECK(r.status == 1);
+  CHECK(r.err.find("cannot home X and Y without Z") != std::string::npos);
+  CHECK(r.err.find("gc-relayer --resume-from-z <measured Z> " + pieces_file() + " > resume.gcode") !=
+        std::string::npos);
+  auto log = gctest::read_reset_log(gctest::read_file(dir + "/executed.log"));
+  REQUIRE(log.sessions.size() == 2);
+  CHECK(log.sessions[1].empty());  // not a numbered line after the reset
 }
