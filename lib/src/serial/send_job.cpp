@@ -18,6 +18,7 @@
 #include "gcode/report/layer_time.hpp"
 #include "gcode/serial/event_loop.hpp"
 #include "gcode/serial/input_identity.hpp"
+#include "gcode/serial/journal_point.hpp"
 #include "gcode/serial/port.hpp"
 #include "gcode/serial/send_journal.hpp"
 #include "gcode/serial/send_resume.hpp"
@@ -223,7 +224,7 @@ int exit_status(const Sender& sender, const SendJob& job, const SendJournal* jou
 void go_on(Sender& sender, const ResumeStart& start, bool quiet) {
   const ResumePlan& plan = start.plan;
   if (plan.condition == PrinterCondition::KeptRunning) {
-    sender.continue_from(start.next, plan.state);
+    sender.continue_from(start.next, plan.state, read_track_fields(start.point, plan.state));
     if (!quiet)
       fmt::print(stderr,
                  "gc-send: resuming: the printer kept running and took line {} last (input line {}, layer {}); on "

@@ -49,13 +49,14 @@ void Sender::start(double now) {
   }
 }
 
-void Sender::continue_from(long long next, const MachineState& printer) {
+void Sender::continue_from(long long next, const MachineState& printer, const ResumeTrack& track) {
   next_number_ = next_send_ = next;
   highest_sent_ = next - 1;
   last_acked_.number = next - 1;
   machine_ = printer;
   continuing_ = true;
   first_held_ = last_enqueued_ = next;
+  track_ = track;
 }
 
 void Sender::grow_ring() {

@@ -69,9 +69,10 @@ long long Sender::surely_ran() const {
 void Sender::printer_reset(std::string_view how, double now) {
   if (finished()) return;
   long long back = surely_ran();
-  // Nothing extruded yet: no part on the bed, the start code homes Z too.
+  // Nothing extruded yet: no part on the bed, the start code homes Z too
+  // (only where this sender sent the print from its first line).
   if (back > 0 && slot(back).track.top_z <= 0) back = 0;
-  if (back == 0 && next_number_ > first_held_ && !in_history(first_held_)) back = -1;
+  if (back == 0 && (first_held_ != 1 || (next_number_ > 1 && !in_history(1)))) back = -1;
   if (back < 0) {
     fail(fmt::format("the printer reset ({}) and the commands it may have lost are no longer held; last "
                      "acknowledged: {}",

@@ -184,7 +184,8 @@ class Sender : private TimeSink {
   // `next` now, standing as `printer` says. Before start(), with the
   // handshake off: M110 N0 would throw away the numbering it goes on with
   // (M115 is still asked).
-  void continue_from(long long next, const MachineState& printer);
+  // `track`: the print up to there (the journal's), for a reset later on.
+  void continue_from(long long next, const MachineState& printer, const ResumeTrack& track = {});
   // A resume after the printer reset (gc-send --resume, the journal's
   // resume plan): before start(), numbered on from `last_number` (M110 N
   // that), the lines that bring it back to the print (reset_sequence.hpp)
