@@ -227,7 +227,8 @@ int exit_status(const Sender& sender, const SendJob& job, const SendJournal* jou
 void go_on(Sender& sender, const ResumeStart& start, bool quiet) {
   const ResumePlan& plan = start.plan;
   if (plan.condition == PrinterCondition::KeptRunning) {
-    sender.continue_from(start.next, plan.state, read_track_fields(start.point, plan.state));
+    sender.continue_from(start.next, plan.state, read_track_fields(start.point, plan.state), plan.input_line,
+                         plan.layer);
     if (!quiet)
       fmt::print(stderr,
                  "gc-send: resuming: the printer kept running and took line {} last (input line {}, layer {}); on "
@@ -242,7 +243,8 @@ void go_on(Sender& sender, const ResumeStart& start, bool quiet) {
   } catch (const std::invalid_argument& e) {
     throw ResumeError(fmt::format("cannot resume: the printer reset and cannot be brought back: {}", e.what()));
   }
-  sender.continue_after_reset(start.next - 1, start.last, plan.layer, sequence, plan.state, plan.track);
+  sender.continue_after_reset(start.next - 1, start.last, plan.layer, sequence, plan.state, plan.track,
+                              plan.input_line);
   if (!quiet)
     fmt::print(stderr,
                "gc-send: resuming: the printer reset since the print stopped ({}); going back to input line {} "

@@ -49,14 +49,31 @@ void Sender::start(double now) {
   }
 }
 
-void Sender::continue_from(long long next, const MachineState& printer, const ResumeTrack& track) {
+void Sender::continue_from(long long next, const MachineState& printer, const ResumeTrack& track,
+                           std::uint64_t source_line, int layer) {
   next_number_ = next_send_ = next;
   highest_sent_ = next - 1;
   last_acked_.number = next - 1;
   machine_ = printer;
   continuing_ = true;
-  first_held_ = last_enqueued_ = next;
+  first_held_ = next;
+  last_enqueued_ = next - 1;
   track_ = track;
+  // The printer kept running: it drained what it took, so every command up
+  // to next - 1 ran.
+  hold_base(next - 1, printer, track, source_line, layer);
+}
+
+void Sender::hold_base(long long n, const MachineState& after, const ResumeTrack& track, std::uint64_t source_line,
+                       int layer) {
+  base_number_ = n;
+  base_ = Slot();
+  base_.drains = true;
+  base_.after = after;
+  base_.track = track;
+  base_.source_line = source_line;
+  base_.layer = layer;
+  for (int a = 0; a < 3; ++a) base_.at[static_cast<std::size_t>(a)] = after.position[a];
 }
 
 void Sender::grow_ring() {

@@ -55,10 +55,11 @@ long long Sender::surely_ran() const {
   int moves = 0;
   long long n = last_acked_.number;
   while (n > 0) {
+    if (n == base_number_) return n;
     if (!in_history(n)) return -1;
     const Slot& s = slot(n);
     // A line of an earlier resume: that resume starts again.
-    if (s.restore != 0) return in_history(s.restore) ? s.restore : -1;
+    if (s.restore != 0) return in_history(s.restore) || s.restore == base_number_ ? s.restore : -1;
     if (s.drains || moves == blocks) return n;
     if (s.move) ++moves;
     n = s.prev;
@@ -71,7 +72,7 @@ void Sender::printer_reset(std::string_view how, double now) {
   long long back = surely_ran();
   // Nothing extruded yet: no part on the bed, the start code homes Z too
   // (only where this sender sent the print from its first line).
-  if (back > 0 && slot(back).track.top_z <= 0) back = 0;
+  if (back > 0 && held(back).track.top_z <= 0) back = 0;
   if (back == 0 && (first_held_ != 1 || (next_number_ > 1 && !in_history(1)))) back = -1;
   if (back < 0) {
     fail(fmt::format("the printer reset ({}) and the commands it may have lost are no longer held; last "
@@ -81,7 +82,7 @@ void Sender::printer_reset(std::string_view how, double now) {
   }
   if (back > 0 && !config_.home_xy_alone) {
     fail(fmt::format("the printer reset ({}); last acknowledged: {}; {}", how, describe(last_acked_),
-                     xy_homing_refusal(slot(back).after.position[kZ], "")));
+                     xy_homing_refusal(held(back).after.position[kZ], "")));
     return;
   }
   // What may print twice: the acknowledged moves after `back`.
@@ -97,12 +98,12 @@ void Sender::printer_reset(std::string_view how, double now) {
     z_high = std::max(z_high, z);
     if (!s.move) continue;
     ++moves;
-    const std::array<double, 3>& a = slot(s.prev).at;
+    const std::array<double, 3>& a = held(s.prev).at;
     mm += std::hypot(s.at[0] - a[0], s.at[1] - a[1], s.at[2] - a[2]);
   }
   std::vector<std::string> sequence;
   if (back > 0) {
-    const Slot& t = slot(back);
+    const Slot& t = held(back);
     ResetResume way{t.after, t.track.top_z, std::max(z_high, t.after.position[kZ]), t.track.retracted,
                     t.track.retraction};
     // Inside a block of gc-send's own (a pause's): the filament is where the
@@ -127,7 +128,7 @@ void Sender::printer_reset(std::string_view how, double now) {
   ++stats_.resets;
   stats_.redone_moves += static_cast<std::uint64_t>(moves);
   stats_.redone_mm += mm;
-  const Position from{back, back > 0 ? slot(back).source_line : 0, back > 0 ? slot(back).layer : 0};
+  const Position from{back, back > 0 ? held(back).source_line : 0, back > 0 ? held(back).layer : 0};
   log(LogLevel::Warning, from.source_line,
       back == 0 ? fmt::format("the printer reset ({}) before anything was printed; starting the print again", how)
                 : fmt::format("the printer reset ({}) after {}; going back to {}: heating, Z declared, X and Y homed, "
@@ -149,9 +150,9 @@ void Sender::resubmit_after_reset(long long back, const std::vector<std::string>
   }
   std::reverse(again.begin(), again.end());
   final_queued_ = false;
-  const MachineState target = back > 0 ? slot(back).after : MachineState{};
-  const ResumeTrack track = back > 0 ? slot(back).track : ResumeTrack{};
-  const int layer = back > 0 ? slot(back).layer : 0;
+  const MachineState target = back > 0 ? held(back).after : MachineState{};
+  const ResumeTrack track = back > 0 ? held(back).track : ResumeTrack{};
+  const int layer = back > 0 ? held(back).layer : 0;
   next_send_ = next_number_;
   highest_sent_ = next_number_ - 1;
   handshake_number_ = next_number_ - 1;
@@ -187,14 +188,17 @@ void Sender::restart_handshake(double now) {
 
 void Sender::continue_after_reset(long long last_number, long long restore, int layer,
                                   const std::vector<std::string>& sequence, const MachineState& target,
-                                  const ResumeTrack& track) {
+                                  const ResumeTrack& track, std::uint64_t source_line) {
   next_number_ = next_send_ = last_number + 1;
   highest_sent_ = handshake_number_ = last_number;
   last_acked_.number = last_number;
   first_held_ = last_number + 1;
-  last_enqueued_ = last_number;
+  last_enqueued_ = restore;  // the sequence follows the command it goes back to
   config_.handshake = true;
   track_ = track;
+  // The command the sequence goes back to: another reset before the print
+  // is past 16 moves again goes back to it once more.
+  hold_base(restore, target, track, source_line, layer);
   restoring_ = restore;
   for (const std::string& line : sequence) enqueue(line, 0, layer);
   restoring_ = 0;

@@ -184,15 +184,17 @@ class Sender : private TimeSink {
   // `next` now, standing as `printer` says. Before start(), with the
   // handshake off: M110 N0 would throw away the numbering it goes on with
   // (M115 is still asked).
-  // `track`: the print up to there (the journal's), for a reset later on.
-  void continue_from(long long next, const MachineState& printer, const ResumeTrack& track = {});
+  // `track`: the print up to there (the journal's), for a reset later on;
+  // `source_line`, `layer`: the input line and layer of command next - 1.
+  void continue_from(long long next, const MachineState& printer, const ResumeTrack& track = {},
+                     std::uint64_t source_line = 0, int layer = 0);
   // A resume after the printer reset (gc-send --resume, the journal's
   // resume plan): before start(), numbered on from `last_number` (M110 N
   // that), the lines that bring it back to the print (reset_sequence.hpp)
   // go out first, as going back to command `restore`; the input follows.
   void continue_after_reset(long long last_number, long long restore, int layer,
                             const std::vector<std::string>& sequence, const MachineState& target,
-                            const ResumeTrack& track);
+                            const ResumeTrack& track, std::uint64_t source_line = 0);
   // Nothing waits to be sent and nothing is in flight.
   bool idle() const { return pending() == 0 && flight_.empty() && output().empty(); }
   // The number the last submitted command got (0: none yet).
@@ -280,6 +282,11 @@ class Sender : private TimeSink {
   };
   Slot& slot(long long n) { return ring_[static_cast<std::size_t>(n) & (ring_.size() - 1)]; }
   const Slot& slot(long long n) const { return ring_[static_cast<std::size_t>(n) & (ring_.size() - 1)]; }
+  // slot(n), or the resume's base: the command a resume went on after,
+  // sent by an earlier gc-send and known from its journal only.
+  const Slot& held(long long n) const { return n == base_number_ ? base_ : slot(n); }
+  void hold_base(long long n, const MachineState& after, const ResumeTrack& track, std::uint64_t source_line,
+                 int layer);
   void on_time(std::int64_t tag, double seconds) override;
   void grow_ring();
   void enqueue(std::string_view command, std::uint64_t source_line, int layer);
@@ -354,6 +361,10 @@ class Sender : private TimeSink {
   bool told_user_wait_ = false; // said once that a wait for the user holds the timeouts
   bool caps_answered_ = false;
   bool continuing_ = false;     // continue_from(): a resume's numbering
+  // The command a resume went on after (held()): surely run, so a reset soon
+  // after the resume goes back to it. -1: none.
+  long long base_number_ = -1;
+  Slot base_;
   bool idle_hint_ = false;      // the printer said "wait" (idle) with lines in flight
   ProbeBackoff probes_;
   int learnt_planner_ = 0;      // planner blocks seen in ADVANCED_OK's P
