@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets with clang (ASan + UBSan) in build-fuzz and
+# Builds the libFuzzer targets with clang (ASan + UBSan) in build-fuzz (or BUILD) and
 # runs each for SECONDS (default 30):
 #  * fuzz_pipeline, the whole streaming pipeline, from a seed corpus: cuts of
 #    every fixture (the start, a layer change, the middle, the end) and edge
@@ -9,13 +9,17 @@
 #    from scripted printer sessions (oks, resends in window and ADVANCED_OK
 #    flow, lost oks, busy, heating reports, junk).
 # Exits non-zero on a crash, a leak, a sanitizer report or a failed check; the
-# input that did it is left in build-fuzz/artifacts/.
+# input that did it is left in BUILD/artifacts/.
 #
-#   fuzz/run.sh [SECONDS]
+#   fuzz/run.sh [SECONDS] [BUILD]
+#
+# BUILD: a tree already configured with clang and -DGCODE_FUZZ=ON (test.sh's
+# sanitizer tree is one): the targets are built there, sharing its objects,
+# instead of compiling the library a third time in build-fuzz.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 seconds=${1:-30}
-build=$root/build-fuzz
+build=${2:-$root/build-fuzz}
 seeds=$root/fuzz/corpus-run/seeds
 work=$root/fuzz/corpus-run/work
 sender_seeds=$root/fuzz/corpus-run/sender-seeds
@@ -25,8 +29,16 @@ if ! command -v clang++ >/dev/null; then
   echo "fuzz: clang++ not found (scripts/install-deps.sh installs it)" >&2
   exit 1
 fi
-CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGCODE_FUZZ=ON \
-  -DGCODE_WERROR=ON -DGCODE_TESTS=OFF -DGCODE_BENCH=OFF >/dev/null
+if [ $# -ge 2 ]; then
+  build=$(cd "$build" && pwd)
+  if ! grep -qx 'GCODE_FUZZ:BOOL=ON' "$build/CMakeCache.txt" 2>/dev/null; then
+    echo "fuzz: $build is not a tree configured with -DGCODE_FUZZ=ON" >&2
+    exit 2
+  fi
+else
+  CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGCODE_FUZZ=ON \
+    -DGCODE_WERROR=ON -DGCODE_TESTS=OFF -DGCODE_BENCH=OFF >/dev/null
+fi
 cmake --build "$build" -j"$(nproc)" --target fuzz_pipeline fuzz_sender >/dev/null
 
 # Seeds: rebuilt every run so they follow the fixtures.

@@ -71,7 +71,7 @@ TEST_CASE("control: several commands per write, a line split over writes, blank 
 TEST_CASE("control: a megabyte of junk is dropped and reported once, and the next good line works", "[serial][control]") {
   Collected c;
   std::string junk;
-  for (int i = 0; i < (1 << 20); ++i) junk += static_cast<char>((i * 7919) & 0xff);
+  for (int i = 0; i < (1 << 20); ++i) junk += static_cast<char>((static_cast<unsigned>(i) * 7919u) & 0xffu);
   for (std::size_t at = 0; at < junk.size(); at += 4096) c.parser.feed(std::string_view(junk).substr(at, 4096));
   c.parser.feed("\npause\n");
   CHECK(c.junk.size() == 1);
