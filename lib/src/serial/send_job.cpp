@@ -63,14 +63,11 @@ void print_summary(const Sender& sender, const VirtualPrinter* printer, const Pr
   if (s.resets > 0)
     input += fmt::format(", printer resets {} ({} moves, {:.1f} mm may have printed twice)", s.resets, s.redone_moves,
                          s.redone_mm);
-  std::string pace = sender.pacer() != nullptr
-                         ? fmt::format(", paced (printer at {:.2f} x the file's speed)", sender.pacer()->speed_factor())
-                         : std::string();
   fmt::print(stderr,
-             "gc-send: summary: lines {}, time {:.3f} s, {:.0f} lines/s, {}, flow {}{}, resends {}, errors {}, "
+             "gc-send: summary: lines {}, time {:.3f} s, {:.0f} lines/s, {}, flow {}, resends {}, errors {}, "
              "overdue answers {}, timeouts {}{}\n",
              s.lines, elapsed, elapsed > 0 ? static_cast<double>(s.lines) / elapsed : 0.0,
-             link_report(sender, baud, scale, pty, elapsed), flow_mode_name(sender.flow().effective()), pace,
+             link_report(sender, baud, scale, pty, elapsed), flow_mode_name(sender.flow().effective()),
              s.resend_requests, s.errors, s.probes, s.timeouts, input);
   for (const PauseRecord& p : control.pauses()) {
     std::string latency = p.latency_mm >= 0 ? fmt::format(", motion went on {:.2f} mm and {:.3f} s (printer time) "

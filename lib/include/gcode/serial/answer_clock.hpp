@@ -58,10 +58,6 @@ class AnswerClock {
   // `bytes` were handed to the port at `now`; returns when the last of them
   // reaches the printer.
   double written(std::size_t bytes, double now);
-  // When the last of `bytes` written at `now` would arrive.
-  double arrival_if_written(std::size_t bytes, double now) const {
-    return (wire_free_ > now ? wire_free_ : now) + static_cast<double>(bytes) * byte_time_;
-  }
   // When the byte `back` bytes before the last one written arrives.
   double arrival_of(std::size_t back) const { return wire_free_ - static_cast<double>(back) * byte_time_; }
 

@@ -234,8 +234,6 @@ class Sender : private TimeSink {
   // its own pause) and has not said it resumed.
   bool printer_paused() const { return printer_paused_; }
   const FlowControl& flow() const { return flow_; }
-  // The pacer (nullptr without pacing): what it learnt of the printer's pace.
-  const Pacer* pacer() const { return config_.pace ? &pacer_ : nullptr; }
   std::size_t in_flight() const { return flight_.size(); }
   std::size_t pending() const { return static_cast<std::size_t>(next_number_ - next_send_); }
   bool cancelled() const { return cancelled_; }
@@ -294,8 +292,8 @@ class Sender : private TimeSink {
   void fill(double now);
   void send_unnumbered(std::string_view command, bool temperature_query, bool track);
   void push_flight(long long number, std::size_t bytes, bool temperature_query);
-  void acknowledge_front(double now, int planner_free = -1);
-  void acknowledge_through(std::size_t index, double now, int planner_free = -1);
+  void acknowledge_front(double now);
+  void acknowledge_through(std::size_t index, double now);
   void on_ok(const Response& r, double now);
   bool answers_handshake(const Response& r, double now);
   void on_resend(long long n, double now);
@@ -317,8 +315,8 @@ class Sender : private TimeSink {
   bool waiting_for_user() const;
   bool silent_command_in_flight() const;
   void detect_flavour();
-  bool paced(double now, const Slot& next);
-  void planned(const Slot& s, const InFlight::Entry& f, double now, int planner_free);
+  bool paced(double now);
+  void planned(const Slot& s, double now);
   void log(LogLevel level, std::uint64_t input_line, std::string_view message) const;
   void relocate(long long expected, double now);
   bool check_position(std::string_view text, double now);
