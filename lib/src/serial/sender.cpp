@@ -394,6 +394,12 @@ void Sender::on_resend(long long n, double now) {
     return;
   }
   if (n < std::max<long long>(1, next_send_ - kHistory)) {
+    // Line 1 long after it was sent: the printer's numbering is back at 0,
+    // it restarted and its greeting did not reach us.
+    if (n == 1) {
+      printer_reset("its line numbers are back at 0: it asked for line 1", now);
+      return;
+    }
     fail(fmt::format("the printer asked to resend line {}, which is no longer in the history (sent up to {})", n,
                      highest_sent_));
     return;
