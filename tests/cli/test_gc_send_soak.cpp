@@ -86,7 +86,7 @@ TEST_CASE("gc-send soak: resets, link drops, lost oks, corrupted lines and kill 
   std::mt19937 rng(22);
   const std::string faults = scheduled_faults(expected.size(), rng);
   const std::string dir = gctest::temp_dir();
-  gctest::RunResult r = gctest::run(supervisor(dir, input, faults, 2, 1.5));
+  gctest::RunResult r = gctest::run(supervisor(dir, input, faults, 2, 0.8));
   INFO(faults << "\n" << r.err);
   REQUIRE(r.status == 0);
   CHECK(r.err.find("resuming: ") != std::string::npos);       // after the kills
