@@ -115,7 +115,24 @@ std::string tool_command(std::string_view tool, const std::string& args) {
   return quote(tool_path(tool)) + " " + args;
 }
 
+namespace {
+
+// gc-send's default journal is per port name, and every pty test's port is
+// named "printer": tests running side by side would share one journal in
+// the user's state folder, which gc-send's lock refuses. Each test process
+// has a state folder of its own (a script may still set its own).
+void own_state_folder() {
+  static const std::string state = [] {
+    std::string folder = temp_dir() + "/state";
+    ::setenv("XDG_STATE_HOME", folder.c_str(), 1);
+    return folder;
+  }();
+}
+
+}  // namespace
+
 RunResult run(const std::string& command_line, std::string_view input) {
+  own_state_folder();
   std::string dir = temp_dir();
   std::string in_path = dir + "/stdin", out_path = dir + "/stdout", err_path = dir + "/stderr";
   write_file(in_path, input);

@@ -18,6 +18,7 @@
 #include "gcode/report/layer_time.hpp"
 #include "gcode/serial/event_loop.hpp"
 #include "gcode/serial/input_identity.hpp"
+#include "gcode/serial/journal_lock.hpp"
 #include "gcode/serial/journal_point.hpp"
 #include "gcode/serial/port.hpp"
 #include "gcode/serial/send_journal.hpp"
@@ -267,6 +268,10 @@ void back_into_control(PrintControl& control, const ResumeStart& start, bool qui
 }  // namespace
 
 int run_send_job(SendJob& job, Diagnostics& diag) {
+  // Before the journal is read or replaced: another gc-send may be writing
+  // it (and printing).
+  std::optional<JournalLock> lock;
+  if (!job.journal_path.empty()) lock.emplace(job.journal_path);
   std::optional<ResumeSource> resume;
   if (job.resume) resume = open_resume(job.journal_path, job.file);
   const std::string file = resume ? resume->resolved : job.file;
