@@ -2,7 +2,8 @@
 // went on printing on its pty: the printer's executed log, across both
 // sessions, holds every command of the input once and in order (a file, the
 // journal and the file found by default, and a pipeline re-run the same
-// way, and killed again and again at seeded random moments); and every bad start is refused with its reason, exit 1, before any
+// way, and killed again and again at seeded random moments); killed inside
+// gc-send's closing M400, the print is found complete; and every bad start is refused with its reason, exit 1, before any
 // line of the print is sent.
 #include <catch2/catch.hpp>
 
@@ -198,4 +199,44 @@ TEST_CASE("gc-send killed with SIGKILL at random moments, resumed each time: the
   run("kill $(cat " + quote(pid_file) + ")");
   CHECK(gcode::serial::read_journal(journal).finished);
   require_every_command_once(dir, input);
+}
+
+TEST_CASE("gc-send --resume after a kill -9 inside gc-send's closing M400: the print is complete, nothing sent, the "
+          "journal marked finished",
+          "[gc-send][resume]") {
+  std::string dir = gctest::temp_dir();
+  // The start of a real print and its end code's moves, the last a 48 mm
+  // lift at 12 mm/s that keeps the closing M400 unanswered for a while:
+  // the kill comes while it waits.
+  std::string input = dir + "/part.gcode";
+  std::string fixture = quote(gctest::fixture_path("prusa_cube_0.2_mk3s_rel_zhop.gcode"));
+  REQUIRE(run(quote(tool_path("gc-subdivide")) + " --max 0.5 " + fixture + " | head -n 1500 > " + quote(input) +
+              "; grep -v '^;' " + fixture + " | grep -B5 '^G1 Z69' >> " + quote(input))
+              .status == 0);
+  std::string port = dir + "/printer";
+  std::string journal = dir + "/print.journal";
+  std::string numbered = "awk -F'\\t' '$2 >= 0' " + quote(dir + "/executed.log") + " | wc -l";
+  std::string script =
+      printer_up(dir) + gc_send("-q --port " + quote(port) + " --journal " + quote(journal) + " " + quote(input)) +
+      " 2>/dev/null & gs=$!\n"
+      "for i in $(seq 3000); do grep -q ' own=1 ' " + quote(journal) + " && break; sleep 0.005; done\n"
+      "kill -9 $gs; wait $gs 2>/dev/null\n"
+      "grep -q '^F ' " + quote(journal) + " && echo finished-before-the-kill\n"
+      "sleep 1\n"  // the printer runs its queue down
+      "n=$(" + numbered + ")\n" +
+      gc_send("--port " + quote(port) + " --resume " + quote(journal) + " " + quote(input)) + "; s=$?\n"
+      "[ $(" + numbered + ") = $n ] || echo sent-something\n" +
+      gc_send("-q --port " + quote(port) + " --resume " + quote(journal) + " " + quote(input)) +
+      " 2>/dev/null || echo refused-as-finished\n"
+      "kill $vp; wait $vp; exit $s";
+  auto r = run(script);
+  INFO(r.out << r.err);
+  REQUIRE(r.out.find("finished-before-the-kill") == std::string::npos);  // the kill came inside the closing block
+  REQUIRE(r.status == 0);
+  CHECK(r.err.find("the print is complete: the printer had taken every line of the input and gc-send's closing M400") !=
+        std::string::npos);
+  CHECK(r.out.find("sent-something") == std::string::npos);
+  CHECK(r.out.find("refused-as-finished") != std::string::npos);
+  CHECK(gcode::serial::read_journal(journal).finished);
+  require_every_command_once(dir, input);  // the M400 the first session sent is the one at the end
 }

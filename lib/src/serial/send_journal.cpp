@@ -51,7 +51,7 @@ std::uint64_t SendJournal::offset_of(std::uint64_t line) const {
 }
 
 void SendJournal::numbered(long long n, std::uint64_t source_line, int layer, const MachineState& after,
-                           const ResumeTrack& track, long long restore) {
+                           const ResumeTrack& track, long long restore, bool closing) {
   // Commands of the control's own (a pause block, a cancel's end) carry no
   // input line: they keep the position in the input of the line before.
   if (source_line != 0) {
@@ -62,6 +62,7 @@ void SendJournal::numbered(long long n, std::uint64_t source_line, int layer, co
   point_.set("off", std::to_string(last_off_));
   point_.set("layer", std::to_string(layer));
   point_.set("own", source_line == 0 ? "1" : "0");
+  point_.set("end", closing ? "1" : "0");
   write_machine_fields(after, point_);
   point_.set("hash", checkpoint_);
   point_.set("hoff", std::to_string(checkpoint_at_));

@@ -70,6 +70,19 @@ void into_pause(const JournalContents& journal, ResumeStart& r) {
   r.paused = paused;
 }
 
+// gc-send stopped inside its closing block, the M400 numbered once every
+// line of the input was (field end): once the printer took it, nothing is
+// left to send. It took it when it answered it (M400's ok comes once the
+// planner is empty, so every move ran; a reset after that lost nothing),
+// or when it ran on and expects the line after it.
+bool closing_taken(const JournalContents& journal, const PrinterFindings& printer) {
+  const JournalEntry& last = journal.entries.back();
+  if (last.point.get("end") != "1") return false;
+  if (journal.acknowledged >= last.n) return true;
+  return printer.condition == PrinterCondition::KeptRunning &&
+         printer.expected_line == static_cast<long long>(last.n) + 1;
+}
+
 }  // namespace
 
 ResumeSource open_resume(const std::string& journal_path, const std::string& file) {
@@ -100,6 +113,12 @@ ResumeStart begin_resume(const ResumeSource& source, int port_fd, SendSession& s
   if (!probe.problem.empty()) throw ResumeError(fmt::format("cannot resume: {}", probe.problem));
   ResumeStart r;
   r.greeted = probe.greeted;
+  if (closing_taken(source.journal, probe.findings)) {
+    r.complete = true;
+    r.last = static_cast<long long>(source.journal.entries.back().n);
+    r.point = source.journal.entries.back().point;
+    return r;
+  }
   r.plan = plan_resume(source.journal, probe.findings, limits);
   if (!r.plan.possible) throw ResumeError(fmt::format("cannot resume: {}", r.plan.refusal));
   const JournalEntry& from = source.journal.entries[r.plan.entry];

@@ -125,7 +125,7 @@ void Sender::refuse(std::uint64_t source_line, std::string why) {
   if (next_number_ == 1) fail(refusal_);  // nothing before it to print
 }
 
-void Sender::enqueue(std::string_view command, std::uint64_t source_line, int layer) {
+void Sender::enqueue(std::string_view command, std::uint64_t source_line, int layer, bool closing) {
   if (next_number_ - std::max<long long>(1, next_send_ - kHistory) >= static_cast<long long>(ring_.size())) grow_ring();
   Slot& s = slot(next_number_);
   s.wire.clear();  // keeps its capacity: no allocation per line once warm
@@ -140,7 +140,7 @@ void Sender::enqueue(std::string_view command, std::uint64_t source_line, int la
   Move move = machine_.apply(line);
   s.at = {machine_.position[kX], machine_.position[kY], machine_.position[kZ]};
   track(s, line, move);
-  if (on_numbered_) on_numbered_({next_number_, source_line, layer, &machine_, &track_, restoring_});
+  if (on_numbered_) on_numbered_({next_number_, source_line, layer, &machine_, &track_, restoring_, closing});
   // Until the estimator's time is final (16 moves later), length / feed rate.
   s.motion = 0;
   s.motion_final = false;
@@ -246,7 +246,7 @@ void Sender::fill(double now) {
   for (;;) {
     if (input_done_ && !final_queued_ && next_send_ == next_number_ && config_.finish_with_m400 && next_number_ > 1) {
       final_queued_ = true;
-      enqueue("M400", 0, last_acked_.layer);
+      enqueue("M400", 0, last_acked_.layer, true);
     }
     if (next_send_ >= next_number_) break;
     const Slot& s = slot(next_send_);

@@ -46,9 +46,10 @@ class SendJournal {
 
   // The sender's hooks.
   // `track` and `restore`: what a resume after a reset needs (the fields
-  // top, retr, prime and restore; sender.hpp's Numbered).
+  // top, retr, prime and restore; sender.hpp's Numbered); `closing`: the
+  // closing M400 (field end), after which nothing of the input is left.
   void numbered(long long n, std::uint64_t source_line, int layer, const MachineState& after, const ResumeTrack& track,
-                long long restore);
+                long long restore, bool closing);
   void acknowledged(long long n) { acked_ = n; }
 
   void flush(double now);

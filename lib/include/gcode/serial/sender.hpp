@@ -173,6 +173,7 @@ class Sender : private TimeSink {
     const MachineState* after = nullptr;
     const ResumeTrack* track = nullptr;  // the print up to it, for a resume after a reset
     long long restore = 0;  // a line of such a resume: the command it goes back to (else 0)
+    bool closing = false;   // the closing M400, numbered once every input line was
   };
   using NumberedHook = std::function<void(const Numbered&)>;
   using AcknowledgedHook = std::function<void(long long n)>;
@@ -287,7 +288,7 @@ class Sender : private TimeSink {
                  int layer);
   void on_time(std::int64_t tag, double seconds) override;
   void grow_ring();
-  void enqueue(std::string_view command, std::uint64_t source_line, int layer);
+  void enqueue(std::string_view command, std::uint64_t source_line, int layer, bool closing = false);
   void refuse(std::uint64_t source_line, std::string why);
   void fill(double now);
   void send_unnumbered(std::string_view command, bool temperature_query, bool track);
