@@ -39,6 +39,14 @@ void Sender::track(Slot& s, const Line& line, const Move& move) {
   last_enqueued_ = next_number_;
   s.restore = restoring_;
   track_.step(move.filament, move.moves_head(), machine_.position[kZ], s.source_line == 0);
+  if (line.is_g(10) && machine_.firmware_retracted && s.source_line != 0) {
+    // A firmware retraction moves no E of the file's: the firmware pulls
+    // back what it is set to (M207, the profile, else its defaults) and its
+    // G11 pushes that and the extra. A resume after a reset primes as much,
+    // as after a retraction (a reset printer starts unretracted).
+    const PlannerLimits& fw = estimator_.limits();
+    track_.retraction = std::max(track_.retraction, fw.fw_retract_length + fw.fw_unretract_extra);
+  }
   s.after = machine_;
   s.track = track_;
 }

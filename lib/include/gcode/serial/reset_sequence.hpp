@@ -34,7 +34,7 @@ namespace gcode::serial {
 struct ResumeTrack {
   double top_z = 0;       // the highest Z extruded at
   double retracted = 0;   // mm retracted and not pushed back
-  double retraction = 0;  // the longest retraction so far: what a resume primes
+  double retraction = 0;  // the longest retraction so far (a firmware one's too): what a resume primes
   // A command that pushed `filament` mm (negative: retracted), moving the
   // head or not, and left the nozzle at `z`. `own`: a line of gc-send's
   // own (a pause's unload is no retraction of the print's to prime).
