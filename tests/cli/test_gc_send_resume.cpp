@@ -13,6 +13,7 @@
 #include <string>
 
 #include "gcode/serial/journal.hpp"
+#include "reset_check.hpp"
 #include "serial_check.hpp"
 #include "test_support.hpp"
 
@@ -46,6 +47,12 @@ std::string gc_send(const std::string& args) { return quote(tool_path("gc-send")
 std::string killed_after(const std::string& args, double seconds) {
   return gc_send(args) + " 2>/dev/null & gs=$!\nsleep " + std::to_string(seconds) +
          "\nkill -9 $gs; wait $gs 2>/dev/null\n";
+}
+
+// A shell command that counts the numbered lines the printer executed
+// (M114 and the like are not).
+std::string numbered_count(const std::string& dir) {
+  return "awk -F'\\t' '$2 >= 0' " + quote(dir + "/executed.log") + " | wc -l";
 }
 
 void require_every_command_once(const std::string& dir, const std::string& input) {
@@ -119,8 +126,7 @@ TEST_CASE("gc-send --resume refuses, exit 1, nothing sent: another file, a corru
   // A finished journal: a whole print on the built-in printer.
   REQUIRE(run(gc_send("-q --port virtual:time-scale=100 --journal " + quote(dir + "/done.journal")),
               "G28\nG1 X5 F6000\n").status == 0);
-  // The numbered lines the printer executed (M114 and the like are not).
-  std::string numbered = "awk -F'\\t' '$2 >= 0' " + quote(dir + "/executed.log") + " | wc -l";
+  std::string numbered = numbered_count(dir);
   auto resume = [&](const std::string& name, const std::string& args) {
     return gc_send("-q --port " + quote(port) + " --resume " + args) + " 2> " + quote(dir + "/err-" + name) + "; echo $? >> " +
            quote(dir + "/err-" + name) + "\n";
@@ -215,7 +221,7 @@ TEST_CASE("gc-send --resume after a kill -9 inside gc-send's closing M400: the p
               .status == 0);
   std::string port = dir + "/printer";
   std::string journal = dir + "/print.journal";
-  std::string numbered = "awk -F'\\t' '$2 >= 0' " + quote(dir + "/executed.log") + " | wc -l";
+  std::string numbered = numbered_count(dir);
   std::string script =
       printer_up(dir) + gc_send("-q --port " + quote(port) + " --journal " + quote(journal) + " " + quote(input)) +
       " 2>/dev/null & gs=$!\n"
@@ -239,4 +245,48 @@ TEST_CASE("gc-send --resume after a kill -9 inside gc-send's closing M400: the p
   CHECK(r.out.find("refused-as-finished") != std::string::npos);
   CHECK(gcode::serial::read_journal(journal).finished);
   require_every_command_once(dir, input);  // the M400 the first session sent is the one at the end
+}
+
+TEST_CASE("gc-send --resume inside a layer: the resumed session is in that layer until the next, in its progress, its "
+          "journal and a reset's warning",
+          "[gc-send][resume][reset]") {
+  std::string dir = gctest::temp_dir();
+  std::string input = subdivided_part(dir);
+  std::string port = dir + "/printer";
+  std::string journal = dir + "/print.journal";
+  std::string numbered = "$(" + numbered_count(dir) + ")";
+  // The printer resets 20 commands into the resumed session, before the
+  // file's next layer marker.
+  std::string script =
+      printer_up(dir) +
+      killed_after("-q --port " + quote(port) + " --journal " + quote(journal) + " " + quote(input), 2) +
+      "n0=" + numbered + "\n(while [ " + numbered + " -lt $((n0 + 20)) ]; do sleep 0.005; done; kill -USR1 $vp) &\n" +
+      gc_send("--port " + quote(port) + " --resume " + quote(journal) + " " + quote(input)) +
+      "; s=$?; kill $vp; wait $vp; exit $s";
+  auto r = run(script);
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  // "took line 1234 last (input line 1300, layer 1)"
+  std::size_t at = r.err.find(", layer ", r.err.find("resuming: the printer kept running"));
+  REQUIRE(at != std::string::npos);
+  int layer = std::stoi(r.err.substr(at + 8));
+  REQUIRE(layer >= 1);  // killed inside the print, not in its start code
+  CHECK(r.err.find("start code") == std::string::npos);  // the progress lines included
+  CHECK(r.err.find("printing   layer " + std::to_string(layer)) != std::string::npos);
+  std::size_t warning = r.err.find("the printer reset (");
+  REQUIRE(warning != std::string::npos);
+  std::string said = r.err.substr(warning, r.err.find('\n', warning) - warning);
+  INFO(said);
+  CHECK(said.find("start code") == std::string::npos);
+  CHECK(said.find("(layer " + std::to_string(layer) + ")") != std::string::npos);
+  // Every command the resumed session journalled is of that layer or later.
+  gcode::serial::JournalContents c = gcode::serial::read_journal(journal);
+  CHECK(c.finished);
+  for (const gcode::serial::JournalEntry& e : c.entries) {
+    INFO("line " << e.n << ": " << e.point.get("line") << ", layer " << e.point.get("layer"));
+    CHECK(e.point.count("layer") >= static_cast<std::uint64_t>(layer));
+  }
+  CHECK(gctest::require_resumed(gctest::read_file(dir + "/executed.log"),
+                                gctest::commands_of(gctest::read_file(input)))
+            .resets == 1);
 }

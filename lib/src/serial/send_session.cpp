@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <system_error>
 
@@ -127,6 +128,7 @@ int SendSession::read_e_mode(EModeChoice choice, std::string_view name) {
 
 void SendSession::set_control(const PrintControlConfig& config, const std::string& control_path) {
   control_ = std::make_unique<PrintControl>(config, sender_, diag_, pipeline_.precision());
+  if (resumed_layer_ > 0) control_->continue_in_layer(resumed_layer_);
   sender_.set_action_handler([this](std::string_view action) { control_->action(action); });
   control_->on_status = [this] {
     if (progress_) progress_->print_line(snapshot());
@@ -216,6 +218,8 @@ void SendSession::skip_printed(std::uint64_t bytes, std::uint64_t hash_bytes, st
   input_bytes_ = skipped_bytes_;
   line_base_ = lines;
   layer_base_ = layer;
+  resumed_layer_ = layer;
+  resumed_z_ = state.lifted ? state.lift_base_z : state.position[kZ];
   pipeline_.start_from(state);
 }
 
@@ -250,7 +254,19 @@ void SendSession::run() {
 // The input's pipeline: nothing of it goes on once a swap left it.
 void SendSession::line(const TrackedLine& t, Emitter&) {
   if (current_ != nullptr) return;
-  deliver(t, layer_base_, line_base_);
+  deliver(t, layer_base_, line_base_, resumed_layer_);
+}
+
+// A resume's pipeline starts inside a layer without its marker: in a file
+// whose next marker does not come (the last layer, a cut file) it falls
+// back to finding layers by height, and its first is the layer the print
+// stopped in, at the height the nozzle stood at. That one is not counted
+// again. (A marker's layer lies above it.)
+bool SendSession::same_layer_again(const LayerInfo& info) {
+  if (resumed_layer_ <= 0 || info.index != 1) return false;
+  if (layer_base_ != resumed_layer_ || std::abs(info.z - resumed_z_) > 1e-3) return false;
+  --layer_base_;
+  return true;
 }
 
 void SendSession::layer(const LayerInfo& info, const MachineState& before, Emitter&) {
@@ -259,6 +275,7 @@ void SendSession::layer(const LayerInfo& info, const MachineState& before, Emitt
     journal_->checkpoint(input_hash_.bytes(), input_hash_.digest());
     journal_->layer_began();
   }
+  if (same_layer_again(info)) return;
   LayerInfo shifted = info;
   shifted.index += layer_base_;
   shifted.first_line += line_base_;
@@ -270,7 +287,11 @@ void SendSession::end_code(const EndCodeInfo&, const MachineState& before, Emitt
 }
 
 // A swapped-in file's lines count on from what was printed before it.
-void SendSession::deliver(const TrackedLine& t, int layer_offset, std::uint64_t line_offset) {
+// `resumed_layer`: a resume's input, whose pipeline starts inside layer
+// `resumed_layer` (the journal's) and takes the lines before the next layer
+// for start code: they are of that layer (the progress, a reset's warning,
+// the journal, where a pause goes).
+void SendSession::deliver(const TrackedLine& t, int layer_offset, std::uint64_t line_offset, int resumed_layer) {
   ++input_lines_;
   if (layer_offset == 0 && line_offset == 0) {
     control_->line(t);
@@ -278,8 +299,16 @@ void SendSession::deliver(const TrackedLine& t, int layer_offset, std::uint64_t 
   }
   RawLine raw = t.raw;
   raw.number += line_offset;
-  TrackedLine shifted{raw, t.line, t.move, t.before, t.state, t.region, t.layer > 0 ? t.layer + layer_offset : 0,
-                      t.feature, t.origin};
+  const bool before_next_layer = t.layer == 0 && resumed_layer > 0;
+  TrackedLine shifted{raw,
+                      t.line,
+                      t.move,
+                      t.before,
+                      t.state,
+                      before_next_layer ? Region::Layer : t.region,
+                      t.layer > 0 ? t.layer + layer_offset : resumed_layer,
+                      t.feature,
+                      t.origin};
   control_->line(shifted);
 }
 

@@ -129,6 +129,12 @@ class PrintControl {
   // its own retraction pending and `top_z` printed). The control waits for
   // `resume`, whose way back is the pause block's for `at` from there.
   void resume_into_pause(const MachineState& at, const MachineState& parked, double retracted, double top_z);
+  // gc-send --resume inside layer `layer` (the journal's): the lines up to
+  // the next layer are of it, not start code.
+  void continue_in_layer(int layer) {
+    layer_ = layer;
+    region_ = Region::Layer;
+  }
   // The `speed F` the print had (the journal's), before anything is sent.
   void restore_speed(double factor) {
     if (factor > 0 && factor != 1) set_speed(factor);

@@ -103,7 +103,8 @@ class SendSession : private Stage {
   void end_code(const EndCodeInfo& info, const MachineState& before, Emitter& out) override;
   bool reads_state() const override { return true; }
   struct Segment;
-  void deliver(const TrackedLine& t, int layer_offset, std::uint64_t line_offset);
+  void deliver(const TrackedLine& t, int layer_offset, std::uint64_t line_offset, int resumed_layer = 0);
+  bool same_layer_again(const LayerInfo& info);
   void start_swap(std::unique_ptr<JoinStream> next, int layers_done);
   bool feed_segment();
   void read_input();
@@ -169,6 +170,8 @@ class SendSession : private Stage {
   double journal_due_ = 0;         // the journal's next timed flush
   std::uint64_t line_base_ = 0;    // a resume: input lines before the first one fed
   int layer_base_ = 0;             // ... and layers printed before it
+  int resumed_layer_ = 0;          // ... the layer it stopped in (the journal's; 0: the start code)
+  double resumed_z_ = 0;           // ... and the nozzle's height there
   std::uint64_t skipped_hash_ = 0;
   std::uint64_t skipped_bytes_ = 0;
   PrefixHash input_hash_;            // the input's bytes fed (or printed before a resume)
