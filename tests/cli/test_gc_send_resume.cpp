@@ -3,8 +3,9 @@
 // sessions, holds every command of the input once and in order (a file, the
 // journal and the file found by default, and a pipeline re-run the same
 // way, and killed again and again at seeded random moments); killed inside
-// gc-send's closing M400, the print is found complete; and every bad start is refused with its reason, exit 1, before any
-// line of the print is sent.
+// gc-send's closing M400, the print is found complete, and inside a cancel's
+// end, never resumed; and every bad start is refused with its reason, exit
+// 1, before any line of the print is sent.
 #include <catch2/catch.hpp>
 
 #include <sys/stat.h>
@@ -289,4 +290,54 @@ TEST_CASE("gc-send --resume inside a layer: the resumed session is in that layer
   CHECK(gctest::require_resumed(gctest::read_file(dir + "/executed.log"),
                                 gctest::commands_of(gctest::read_file(input)))
             .resets == 1);
+}
+
+TEST_CASE("gc-send --resume after a kill -9 while a cancel's end went out: never resumed, the print ended or refused "
+          "while its heaters may be on",
+          "[gc-send][resume]") {
+  for (bool reset : {false, true}) {
+    INFO((reset ? "the printer reset since" : "the printer ran on"));
+    std::string dir = gctest::temp_dir();
+    std::string input = subdivided_part(dir);
+    std::string port = dir + "/printer", journal = dir + "/print.journal", fifo = dir + "/control";
+    std::string numbered = numbered_count(dir);
+    std::string script =
+        printer_up(dir) + gc_send("-q --port " + quote(port) + " --journal " + quote(journal) + " --control " +
+                                  quote(fifo) + " " + quote(input)) +
+        " 2>/dev/null & gs=$!\n"
+        "for i in $(seq 1000); do grep -q ' layer=1 ' " + quote(journal) + " 2>/dev/null && break; sleep 0.01; done\n"
+        "sleep 0.3\n"  // inside layer 1
+        "echo cancel > " + quote(fifo) + "\n"
+        "for i in $(seq 2000); do grep -q ' state=cancelling ' " + quote(journal) + " && break; sleep 0.002; done\n"
+        "kill -9 $gs; wait $gs 2>/dev/null\n"
+        "grep -q '^F ' " + quote(journal) + " && echo finished-before-the-kill\n" +
+        (reset ? "kill -USR1 $vp\n" : "") + "sleep 1\ncp " + quote(journal) + " " + quote(dir + "/before.journal") +
+        "\nn=$(" + numbered + ")\n" +
+        gc_send("--port " + quote(port) + " --resume " + quote(journal) + " " + quote(input)) + "; s=$?\n"
+        "[ $(" + numbered + ") = $n ] || echo sent-something\n"
+        "kill $vp; wait $vp; exit $s";
+    auto r = run(script);
+    INFO(r.out << r.err);
+    REQUIRE(r.out.find("finished-before-the-kill") == std::string::npos);
+    CHECK(r.out.find("sent-something") == std::string::npos);
+    // Whether the printer took the whole of the cancel's end: the newest
+    // numbered line it ran against the journal's newest.
+    auto ran = gctest::parse_executed_log(gctest::read_file(dir + "/executed.log"));
+    REQUIRE_FALSE(ran.numbers.empty());
+    const bool whole = ran.numbers.back() ==
+                       static_cast<long long>(gcode::serial::read_journal(dir + "/before.journal").entries.back().n);
+    if (reset) {
+      CHECK(r.status == 0);
+      CHECK(r.err.find("the print was being cancelled when gc-send stopped, and the printer reset since") !=
+            std::string::npos);
+    } else if (whole) {
+      CHECK(r.status == 0);
+      CHECK(r.err.find("the print was cancelled: the printer had taken the whole of the cancel's end") !=
+            std::string::npos);
+    } else {
+      CHECK(r.status == 1);
+      CHECK(r.err.find("its heaters may still be on") != std::string::npos);
+    }
+    CHECK(gcode::serial::read_journal(journal).finished == (r.status == 0));
+  }
 }

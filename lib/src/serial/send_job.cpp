@@ -251,18 +251,16 @@ void go_on(Sender& sender, const ResumeStart& start, bool quiet) {
                plan.redone_moves, plan.redone_mm);
 }
 
-// gc-send was stopped after the printer took its closing M400: the print is
-// complete, nothing is sent, and the journal says so (a resume of it is
-// then refused as finished).
+// gc-send was stopped after the printer took its closing M400, or while
+// the print was cancelled: nothing is sent, and the journal says the print
+// ended (a resume of it is then refused as finished).
 int already_complete(const SendJob& job, const ResumeStart& start, const InputIdentity& input) {
   SendJournal journal(JournalOptions{.path = job.journal_path}, input, job.port);
   journal.continue_after(start.last, start.point);
   journal.finish(EventLoop::now());
   if (!job.quiet)
-    fmt::print(stderr,
-               "gc-send: the print is complete: the printer had taken every line of the input and gc-send's closing "
-               "M400 (line {}) when gc-send stopped; nothing sent, the journal {} is marked finished\n",
-               start.last, job.journal_path);
+    fmt::print(stderr, "gc-send: {}; nothing sent, the journal {} is marked finished\n", start.complete,
+               job.journal_path);
   return 0;
 }
 
@@ -337,7 +335,7 @@ int run_send_job(SendJob& job, Diagnostics& diag) {
     ResumeLimits limits;
     limits.can_home_xy_alone = config.home_xy_alone;
     start = begin_resume(*resume, port.fd, session, std::max(30.0, config.timeout), limits, trace_line);
-    if (start->complete) return already_complete(job, *start, identify_input(name, input.fd()));
+    if (!start->complete.empty()) return already_complete(job, *start, identify_input(name, input.fd()));
     journal = std::make_unique<SendJournal>(JournalOptions{.path = job.journal_path}, identify_input(name, input.fd()),
                                             job.port);
     journal->continue_after(start->last, start->point);

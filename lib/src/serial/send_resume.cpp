@@ -70,17 +70,41 @@ void into_pause(const JournalContents& journal, ResumeStart& r) {
   r.paused = paused;
 }
 
-// gc-send stopped inside its closing block, the M400 numbered once every
-// line of the input was (field end): once the printer took it, nothing is
-// left to send. It took it when it answered it (M400's ok comes once the
-// planner is empty, so every move ran; a reset after that lost nothing),
-// or when it ran on and expects the line after it.
-bool closing_taken(const JournalContents& journal, const PrinterFindings& printer) {
+// The printer took the journal's last line: it answered it, or it ran on
+// and expects the line after it.
+bool took_last(const JournalContents& journal, const PrinterFindings& printer) {
   const JournalEntry& last = journal.entries.back();
-  if (last.point.get("end") != "1") return false;
   if (journal.acknowledged >= last.n) return true;
   return printer.condition == PrinterCondition::KeptRunning &&
          printer.expected_line == static_cast<long long>(last.n) + 1;
+}
+
+// Why nothing is left to send, or "". gc-send stopped
+//  * while a cancel's end went out (its lines, numbered at once, carry the
+//    state cancelling): the print is over, never to go on; refused when
+//    the printer took only part of it (its heaters may be on);
+//  * inside its closing block, the M400 numbered once every line of the
+//    input was (field end), and the printer took it (its ok comes once the
+//    planner is empty: a reset after it lost nothing).
+std::string nothing_left(const JournalContents& journal, const PrinterFindings& printer) {
+  const JournalEntry& last = journal.entries.back();
+  if (last.point.get("state") == "cancelling") {
+    if (printer.condition == PrinterCondition::Reset)
+      return "the print was being cancelled when gc-send stopped, and the printer reset since (its heaters are off)";
+    if (took_last(journal, printer))
+      return fmt::format("the print was cancelled: the printer had taken the whole of the cancel's end (to line {}) "
+                         "when gc-send stopped",
+                         last.n);
+    throw ResumeError(fmt::format("cannot resume: the print was being cancelled when gc-send stopped, and the printer "
+                                  "took its end only to line {} of {}: nothing to resume, but its heaters may still "
+                                  "be on (M104 S0 and M140 S0 turn them off)",
+                                  printer.expected_line - 1, last.n));
+  }
+  if (last.point.get("end") == "1" && took_last(journal, printer))
+    return fmt::format("the print is complete: the printer had taken every line of the input and gc-send's closing "
+                       "M400 (line {}) when gc-send stopped",
+                       last.n);
+  return std::string();
 }
 
 }  // namespace
@@ -113,8 +137,8 @@ ResumeStart begin_resume(const ResumeSource& source, int port_fd, SendSession& s
   if (!probe.problem.empty()) throw ResumeError(fmt::format("cannot resume: {}", probe.problem));
   ResumeStart r;
   r.greeted = probe.greeted;
-  if (closing_taken(source.journal, probe.findings)) {
-    r.complete = true;
+  r.complete = nothing_left(source.journal, probe.findings);
+  if (!r.complete.empty()) {
     r.last = static_cast<long long>(source.journal.entries.back().n);
     r.point = source.journal.entries.back().point;
     return r;

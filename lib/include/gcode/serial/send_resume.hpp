@@ -50,16 +50,18 @@ struct ResumeStart {
     ResumeTrack track;
   };
   std::optional<Paused> paused;
-  // The printer had taken gc-send's closing M400 (every line of the input
-  // ran): nothing is left to send; `last` and `point` are the M400's.
-  bool complete = false;
+  // Why nothing is left to send ("": the print goes on): the printer had
+  // taken gc-send's closing M400 (every line of the input ran), or the
+  // print was cancelled. `last` and `point` are the journal's last line's.
+  std::string complete;
 };
 
 // Asks the printer on `port_fd`, plans, and skips the printed part of the
 // input in `session` (its hash checked). `timeout`: seconds for each answer.
 // A printer that reset goes on from the plan's command (ResumePlan): the
 // caller sends the resume sequence first. A print whose closing M400 the
-// printer took is `complete`: no plan, nothing skipped.
+// printer took, or that was being cancelled, is `complete`: no plan,
+// nothing skipped (a cancel the printer took only part of is refused).
 ResumeStart begin_resume(const ResumeSource& source, int port_fd, SendSession& session, double timeout,
                          const ResumeLimits& limits, const std::function<void(std::string_view)>& trace);
 
