@@ -1,9 +1,11 @@
-// One gc-send per journal: while a print runs with journal J, a second
-// `gc-send --journal J` and a `gc-send --resume J` are refused, naming the
-// holder's pid, exit 1, before they open the port. The lock dies with the
-// holder: after a kill -9, `--resume J` takes it and finishes the print,
-// and the printer's executed log holds every command of the input once, in
-// order (nothing of the refused ones).
+// One gc-send per journal and per port: while a print runs with journal J,
+// a second `gc-send --journal J` and a `gc-send --resume J` are refused,
+// naming the holder's pid, exit 1, before they open the port; one with
+// another journal or none is refused when it opens the port, before it sets
+// or sends anything. The locks die with the holder: after a kill -9,
+// `--resume J` takes them and finishes the print, and the printer's
+// executed log holds every command of the input once, in order (nothing of
+// the refused ones).
 #include <catch2/catch.hpp>
 
 #include <string>
@@ -15,14 +17,15 @@
 using gctest::quote;
 using gctest::tool_path;
 
-TEST_CASE("gc-send: a second gc-send or a --resume on a journal in use is refused, naming the holder, the lock ends "
-          "with a kill -9",
+TEST_CASE("gc-send: a second gc-send on a journal or a port in use, or a --resume, is refused, naming the holder, the "
+          "locks end with a kill -9",
           "[gc-send][resume]") {
   const std::string& input = gctest::pieces_of("prusa_cube_0.2_mk3s_rel_zhop.gcode", 3000);
   std::string dir = gctest::temp_dir();
   std::string link = dir + "/printer";
   std::string journal = dir + "/print.journal";
   std::string second = dir + "/err-second", refused_resume = dir + "/err-resume";
+  std::string no_journal = dir + "/err-no-journal", other_journal = dir + "/err-other-journal";
   std::string send = quote(tool_path("gc-send")) + " -q --port " + quote(link) + " ";
   auto refused = [&](const std::string& args, const std::string& err) {
     return send + args + " " + quote(input) + " 2> " + quote(err) + "; echo $? >> " + quote(err) + "\n";
@@ -34,6 +37,7 @@ TEST_CASE("gc-send: a second gc-send or a --resume on a journal in use is refuse
       send + "--journal " + quote(journal) + " " + quote(input) + " & gs=$!\n"
       "for i in $(seq 500); do [ -s " + quote(journal) + " ] && break; sleep 0.01; done\nsleep 0.3\n" +
       refused("--journal " + quote(journal), second) + refused("--resume " + quote(journal), refused_resume) +
+      refused("--no-journal", no_journal) + refused("--journal " + quote(dir + "/other.journal"), other_journal) +
       "kill -0 $gs || echo ended-before-the-kill\n"
       "kill -9 $gs; wait $gs\n" +
       send + "--resume " + quote(journal) + " " + quote(input) + "; s=$?\n"
@@ -48,6 +52,11 @@ TEST_CASE("gc-send: a second gc-send or a --resume on a journal in use is refuse
   for (const std::string& err : {gctest::read_file(second), gctest::read_file(refused_resume)}) {
     INFO(err);
     CHECK(err.find("the journal " + journal + " is in use by another gc-send (pid " + pid + ")") != std::string::npos);
+    CHECK(err.substr(err.size() - 2) == "1\n");
+  }
+  for (const std::string& err : {gctest::read_file(no_journal), gctest::read_file(other_journal)}) {
+    INFO(err);
+    CHECK(err.find("the port " + link + " is in use by another gc-send (pid " + pid + ")") != std::string::npos);
     CHECK(err.substr(err.size() - 2) == "1\n");
   }
   gctest::require_exact(r, gctest::commands_of(gctest::read_file(input)));

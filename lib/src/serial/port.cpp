@@ -2,13 +2,17 @@
 // pseudo-terminal code that needs the latter is in pty.cpp.
 #include <asm/termbits.h>
 #include <fcntl.h>
+#include <sys/file.h>
 #include <sys/ioctl.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 #include <thread>
 
@@ -20,9 +24,45 @@ namespace gcode::serial {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// The pid holding a flock() on the file `fd` is open on, from /proc/locks
+// ("1: FLOCK  ADVISORY  WRITE 4242 00:1a:1234 0 EOF"); "" when not found.
+std::string flock_holder(int fd) {
+  struct stat st{};
+  if (::fstat(fd, &st) != 0) return std::string();
+  const std::string inode = fmt::format("{:02x}:{:02x}:{}", major(st.st_dev), minor(st.st_dev), st.st_ino);
+  std::ifstream locks("/proc/locks");
+  std::string n, kind, mode, access, pid, where;
+  std::string rest;
+  while (locks >> n >> kind >> mode >> access >> pid >> where) {
+    std::getline(locks, rest);
+    if (kind == "FLOCK" && where == inode) return pid;
+  }
+  return std::string();
+}
+
+// One program at a time on a printer's port: a second gc-send would
+// interleave its lines with the print's (and set the baud rate, or pulse
+// DTR and restart the board). Taken before anything is set on the port;
+// it ends with the descriptor, a SIGKILL included. Advisory: it stops
+// gc-sends (and programs that flock() likewise), not every program.
+void lock_port(int fd, const std::string& path) {
+  if (::flock(fd, LOCK_EX | LOCK_NB) == 0) return;
+  const int e = errno;
+  const std::string holder = e == EWOULDBLOCK ? flock_holder(fd) : std::string();
+  ::close(fd);
+  if (e != EWOULDBLOCK) throw std::runtime_error(fmt::format("cannot lock {}: {}", path, std::strerror(e)));
+  throw std::runtime_error(fmt::format("the port {} is in use by another gc-send{} (one print per printer)", path,
+                                       holder.empty() ? std::string() : " (pid " + holder + ")"));
+}
+
+}  // namespace
+
 int open_serial_port(const std::string& path, const PortOptions& options) {
   int fd = ::open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) throw std::runtime_error(fmt::format("cannot open {}: {}", path, std::strerror(errno)));
+  lock_port(fd, path);
   struct termios2 tio{};
   if (ioctl(fd, TCGETS2, &tio) != 0) {
     int e = errno;

@@ -15,8 +15,10 @@ struct PortOptions {
   bool reset = false;  // pulse DTR low to restart an Arduino-style board
 };
 
-// Opens and configures `path`; the descriptor is non-blocking. Throws
-// std::runtime_error with a readable message.
+// Opens and configures `path`; the descriptor is non-blocking and holds an
+// exclusive flock() on the port, taken before anything is set on it. Throws
+// std::runtime_error with a readable message (another gc-send holding the
+// port is named by its pid).
 int open_serial_port(const std::string& path, const PortOptions& options);
 
 // Whether `fd` is a pseudo-terminal (a simulated printer, Klipper's
