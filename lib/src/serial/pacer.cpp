@@ -1,35 +1,175 @@
 #include "gcode/serial/pacer.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace gcode::serial {
 
 std::size_t Pacer::blocks(int planner_blocks) const {
-  return std::min(ends_.size(), static_cast<std::size_t>(std::max(1, planner_blocks)));
+  return std::min(kMaxBlocks, static_cast<std::size_t>(std::max(1, planner_blocks)));
 }
 
-bool Pacer::blocked(double now, int moves_in_flight, int planner_blocks) {
-  const std::size_t n = blocks(planner_blocks);
+int Pacer::ahead(double now, int planner_blocks) const {
+  const long long from = std::max({known_ + 1, oldest(), answered_ - static_cast<long long>(blocks(planner_blocks)) + 1});
   int ahead = 0;
-  double first_end = kNever;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (ends_[i] > now) {
-      ++ahead;
-      first_end = std::min(first_end, ends_[i]);
+  for (long long i = from; i <= answered_; ++i) ahead += move(i).end > now ? 1 : 0;
+  return ahead;
+}
+
+const Pacer::Planned* Pacer::next_to_end(double now, int planner_blocks) const {
+  const long long from = std::max({known_ + 1, oldest(), answered_ - static_cast<long long>(blocks(planner_blocks)) + 1});
+  const Planned* first = nullptr;
+  for (long long i = from; i <= answered_; ++i)
+    if (move(i).end > now && (first == nullptr || move(i).end < first->end)) first = &move(i);
+  return first;
+}
+
+bool Pacer::blocked(double now, int moves_in_flight, long long number, int planner_blocks) {
+  const int n = static_cast<int>(blocks(planner_blocks));
+  const int held = moves_in_flight + ahead(now, planner_blocks);
+  wake_ = kNever;
+  if (held < n) return release(number, now);
+  const Planned* first = next_to_end(now, planner_blocks);
+  const double next = first != nullptr ? first->end : kNever;
+  // With nothing in flight no answer will come: wake when a block ends.
+  if (moves_in_flight == 0) wake_ = next;
+  return true;
+}
+
+// The end of move `to` if the moves from `from` on ran at `factor`, the
+// first starting at `start` at the earliest, each when it was answered
+// and the one before had ended.
+double Pacer::end_with(long long from, double start, long long to, double factor) const {
+  double end = start;
+  for (long long i = from; i <= to; ++i) end = std::max(end, move(i).entered) + move(i).seconds / factor;
+  return end;
+}
+
+void Pacer::sight(long long index, double t) {
+  if (sighted_ > 0 && index - sighted_ < PaceRate::kMinSpan) return;  // too close to measure: the older one stays
+  if (sighted_ > 0 && sighted_ + 1 >= oldest()) {
+    // The factor that makes the moves since the last sighting end now.
+    double lo = PaceRate::kMin;
+    double hi = PaceRate::kMax;
+    if (end_with(sighted_ + 1, sighted_at_, index, hi) < t) {
+      for (int k = 0; k < 40; ++k) {
+        double mid = std::sqrt(lo * hi);
+        (end_with(sighted_ + 1, sighted_at_, index, mid) > t ? lo : hi) = mid;
+      }
+      rate_.sample(std::sqrt(lo * hi), static_cast<double>(index - sighted_));
     }
   }
-  bool blocked = moves_in_flight + ahead >= static_cast<int>(n);
-  // With nothing in flight no answer will come: wake when a block ends.
-  wake_ = blocked && moves_in_flight == 0 ? first_end : kNever;
-  return blocked;
+  sighted_ = index;
+  sighted_at_ = t;
 }
 
-void Pacer::planned(double nominal, double now, int planner_blocks, double time_scale) {
-  const std::size_t n = blocks(planner_blocks);
-  double scale = time_scale > 0 ? time_scale : 1;
-  last_end_ = std::max(last_end_, now) + nominal / scale;
-  ends_[next_ % n] = last_end_;
-  next_ = (next_ + 1) % n;
+// The move just answered took the block of move `freed`: that one had ended
+// by `entered`, or ended then if the answer was late (it waited for it).
+bool Pacer::observe(long long freed, double entered, double late, bool bounded) {
+  if (freed <= known_ || freed < oldest()) return false;
+  const double block = move(freed).seconds / rate_.factor();
+  // Late by more than the host's own latency wanders: a wait for it.
+  if (bounded && late > std::max(kGrace * block, 3 * jitter_)) {
+    // The answer came that late after the block ended, less the host's
+    // usual latency (a model later than the printer starves it).
+    known_ = freed;
+    anchor_ = entered - jitter_;
+    sight(freed, anchor_);
+    return true;
+  }
+  // It had ended by then at the latest. (How late such answers come is
+  // how much the host's latency wanders.)
+  if (bounded) jitter_ += (std::max(0.0, late) - jitter_) / 16;
+  known_ = freed;
+  anchor_ = bounded ? std::min(move(freed).end, entered) : move(freed).end;
+  return false;
+}
+
+void Pacer::chain() {
+  const double factor = rate_.factor();
+  double prev = anchor_;
+  for (long long i = known_ + 1; i <= answered_; ++i) {
+    Planned& p = move(i);
+    p.end = std::max(prev, p.entered) + p.seconds / factor;
+    prev = p.end;
+  }
+}
+
+void Pacer::answered(const Answer& a, int planner_blocks, double time_scale) {
+  const auto n = static_cast<long long>(blocks(planner_blocks));
+  const bool known = a.arrival != kUnknown;
+  // The least answer time seen is the host's own latency: a planner that
+  // is always full makes every answer wait, so no recent window would do.
+  if (known) base_ = std::min(base_, a.now - a.arrival);
+  const double base = base_ < kNever ? base_ : 0;
+  // When it entered the planner: its answer, less the way back.
+  const double entered = a.now - std::max(0.0, base);
+  const double late = known ? a.now - a.arrival - base : 0;
+  if (known_ < answered_ + 1 - static_cast<long long>(kHistory)) {
+    // The oldest move kept makes room: the model takes its end as known.
+    known_ = answered_ + 1 - static_cast<long long>(kHistory);
+    anchor_ = std::max(anchor_, move(known_).end);
+  }
+  ++answered_;
+  const Released& r = released_[static_cast<std::size_t>(a.number) % kHistory];
+  move(answered_) = {entered, a.nominal / (time_scale > 0 ? time_scale : 1), kNever,
+                     r.number == a.number ? r.at : kNever};
+  const long long freed = answered_ - n;  // the move whose block this one took
+  if (a.planner_free >= 0 && clean_) {
+    // ADVANCED_OK: the planner holds its size less P moves, this one among
+    // them; the one before the oldest of them ended by now (within a block).
+    const long long holds = std::clamp(n - a.planner_free, 1LL, n);
+    known_ = std::max(known_, answered_ - holds);
+    anchor_ = entered;
+    sight(answered_ - holds, entered);
+  } else {
+    // An answer read together with the one before it (no time between
+    // them) was late because the host was: a stall, not a wait for a block.
+    const bool apart = a.now - last_now_ >= 0.5 * late;
+    observe(answered_ - n, entered, late, clean_ && known && apart);
+  }
+  chain();
+  floor_ = std::max(shown(freed, a.now), floor_ * kFloorDecay);
+  if (rate_.factor() < floor_) {
+    rate_.at_least(floor_);
+    chain();
+  }
+  clean_ = true;
+  last_now_ = a.now;
+}
+
+bool Pacer::release(long long number, double now) {
+  released_[static_cast<std::size_t>(number) % kHistory] = {number, now};
+  return false;
+}
+
+// What the printer has shown it does at least: move `freed` had ended when
+// the move just answered found a block (`now`), and no move starts before
+// it was handed to the port. So the moves from any one kept up to `freed`
+// ran, at the file's feed rates, within the time from that one's release to
+// `now`: a speed the printer reached whatever the host's latency did to the
+// answers' times (late answers, late releases only lower it), the best of
+// those spans a floor for the factor that never stands above the printer's
+// real pace, as a factor learnt from timing can. (It takes a planner of the
+// size assumed; one that holds more would let moves on unseen.)
+double Pacer::shown(long long freed, double now) const {
+  double seconds = 0, best = 0;
+  for (long long i = freed; i >= oldest() && freed - i < static_cast<long long>(kHistory); --i) {
+    seconds += move(i).seconds;
+    const double took = now - move(i).released;
+    if (freed - i + 1 >= kMinShown && move(i).released < kNever && took > 0) best = std::max(best, seconds / took);
+  }
+  return best * kShownMargin;
+}
+
+void Pacer::answered_other(bool waits) {
+  if (waits) interrupted();
+}
+
+void Pacer::interrupted() {
+  // The time up to the next sighting is not the moves' alone.
+  clean_ = false;
+  sighted_ = -1;
 }
 
 }  // namespace gcode::serial

@@ -288,7 +288,7 @@ void Sender::check_done(double now) {
   if (cancelled_ && state_ != SenderState::Failed && flight_.empty()) state_ = SenderState::Cancelled;
 }
 
-void Sender::acknowledge_front(double now) {
+void Sender::acknowledge_front(double now, int planner_free) {
   const InFlight::Entry f = flight_.pop_front();
   if (f.number < 0) {
     clock_.answered(0, now);
@@ -296,7 +296,7 @@ void Sender::acknowledge_front(double now) {
   }
   const Slot& s = slot(f.number);
   clock_.answered(s.move ? s.motion : 0, now, s.move ? s.nominal : 0);
-  planned(s, now);
+  planned(s, f, now, planner_free);
   if (f.number > last_acked_.number) {
     last_acked_.number = f.number;
     if (on_acknowledged_) on_acknowledged_(f.number);
@@ -307,8 +307,9 @@ void Sender::acknowledge_front(double now) {
   }
 }
 
-void Sender::acknowledge_through(std::size_t index, double now) {
-  for (std::size_t i = 0; i <= index; ++i) acknowledge_front(now);
+void Sender::acknowledge_through(std::size_t index, double now, int planner_free) {
+  // ADVANCED_OK's P is the planner's as the last of them was answered.
+  for (std::size_t i = 0; i <= index; ++i) acknowledge_front(now, i == index ? planner_free : -1);
 }
 
 void Sender::on_ok(const Response& r, double now) {
@@ -347,7 +348,9 @@ void Sender::on_ok(const Response& r, double now) {
   written_off_ += answer.written_off;
   switch (answer.kind) {
     case InFlight::Answer::Kind::Stray: ++stats_.stray_oks; break;
-    case InFlight::Answer::Kind::Through: acknowledge_through(answer.index, now); break;
+    case InFlight::Answer::Kind::Through:
+      acknowledge_through(answer.index, now, flow_.ok_numbers_acknowledge() ? r.planner_free : -1);
+      break;
     case InFlight::Answer::Kind::Question:
       flight_.erase(answer.index);
       clock_.answered(0, now);
@@ -488,6 +491,7 @@ void Sender::on_line(std::string_view text, double now) {
       last_rx_ = now;
       last_busy_ = now;
       clock_.keepalive(now);
+      pacer_.interrupted();
       break;
     case ResponseKind::Action: on_action(r.text); break;
     case ResponseKind::Temperature:
@@ -495,6 +499,7 @@ void Sender::on_line(std::string_view text, double now) {
       if (long_command_in_flight()) {
         last_rx_ = now;
         clock_.keepalive(now);
+        pacer_.interrupted();
       }
       break;
     case ResponseKind::Capability: on_capability(r.text); break;
@@ -615,11 +620,22 @@ bool Sender::paced(double now) {
   int moves = 0;
   for (const InFlight::Entry& f : flight_)
     if (f.number > 0 && slot(f.number).move) ++moves;
-  return pacer_.blocked(now, moves, clock_.planner_blocks());
+  return pacer_.blocked(now, moves, next_send_, clock_.planner_blocks());
 }
 
-void Sender::planned(const Slot& s, double now) {
-  if (config_.pace && s.move) pacer_.planned(s.nominal, now, clock_.planner_blocks(), config_.time_scale);
+void Sender::planned(const Slot& s, const InFlight::Entry& f, double now, int planner_free) {
+  if (!config_.pace) return;
+  if (!s.move) {
+    pacer_.answered_other(!s.instant);
+    return;
+  }
+  Pacer::Answer a;
+  a.number = f.number;
+  a.nominal = s.nominal;
+  a.now = now;
+  a.arrival = f.arrival == InFlight::kNotArrived ? Pacer::kUnknown : f.arrival;
+  a.planner_free = planner_free;
+  pacer_.answered(a, clock_.planner_blocks(), config_.time_scale);
 }
 
 double Sender::overdue_at() const {

@@ -1,41 +1,118 @@
 #pragma once
 // Pacing (SenderConfig::pace): hold no more moves ahead of the nozzle than
-// the printer's planner takes. A move goes out only while the moves in
-// flight and those the planner still holds are fewer than its blocks. What
-// the planner holds comes from the answers: each answered move entered it
-// then, and runs for its length at its feed rate after the one before (the
-// fastest it can go, so the count never runs high and the planner is never
-// starved by it).
-//
-// Open-loop for now: the pace is the file's own (length / feed rate); a
-// pacer that learns the printer's pace from the answers' timing goes here.
+// the printer's planner takes, and follow the printer's real pace, so the
+// planner is never held back while it runs dry. A move goes out only while
+// the moves in flight and those the planner still holds are fewer than its
+// blocks; what the planner holds is a model, corrected by what the printer
+// says:
+//  * each answered move entered the planner then and runs for its length
+//    at its feed rate divided by the printer's speed factor (pace_rate.hpp)
+//    after the one before;
+//  * a planner of n blocks took move m only when move m - n had ended: an
+//    answer that came as soon as the move arrived says that block had ended
+//    by then (the model's end times are pulled back to it), one that came
+//    later (the move waited for a block) says when it ended: a sighting,
+//    which sets the model's clock and teaches the speed factor;
+//  * ADVANCED_OK's P (free blocks) says how many moves the planner holds
+//    at every answer: a sighting each time;
+//  * a command that waits (M109, G28, M400) or "busy:" holds the printer
+//    for reasons other than its moves: a late answer after it is no
+//    sighting.
+// The factor rises only to a speed the printer has shown (a floor: what
+// ran between a move's release and the answer that says its block had
+// ended; host latency only lowers it), never on timing alone: at the file's
+// speed a factor learnt too high held more moves in flight than the planner
+// takes, and `pause now` stopped 3.5 mm on instead of 3.2. That floor is
+// close to the printer's pace only when the planner was full, which
+// ADVANCED_OK's P shows at every answer; without it the pacer does not
+// overfill the planner to find out (a probe: one move more than fits, which
+// at 1x is a piece more ahead of the nozzle at a pause), so against such a
+// printer it stays near the file's pace.
+#include <algorithm>
 #include <array>
 #include <cstddef>
+
+#include "gcode/serial/pace_rate.hpp"
 
 namespace gcode::serial {
 
 class Pacer {
  public:
   static constexpr double kNever = 1e300;
+  static constexpr double kUnknown = 1e300;     // a move's arrival, not known
+  static constexpr std::size_t kMaxBlocks = 64;
+  static constexpr double kGrace = 0.25;        // of a block: how late an answer is before it waited
+  static constexpr long long kMinShown = 8;     // moves a span of the printer's shown speed holds at least
+  static constexpr double kShownMargin = 0.98;  // of the shown speed: the simulated clock's own slack
+  static constexpr double kFloorDecay = 0.995;  // per answered move: the shown speed is forgotten slowly
 
-  // Whether a move must wait: `moves_in_flight` sent and not answered, with
-  // a planner of `planner_blocks`. When it must and nothing is in flight (no
-  // answer will come), wake() says when a block ends.
-  bool blocked(double now, int moves_in_flight, int planner_blocks);
-  // An answered move of `nominal` printer seconds entered the planner.
-  void planned(double nominal, double now, int planner_blocks, double time_scale);
+  // A move `number` may go, with `moves_in_flight` sent and not answered
+  // and a planner of `planner_blocks`? When it must wait and nothing is in
+  // flight (no answer will come), wake() says when it may go.
+  bool blocked(double now, int moves_in_flight, long long number, int planner_blocks);
+
+  struct Answer {
+    long long number = 0;        // the move's line number
+    double nominal = 0;          // printer seconds at the file's feed rate
+    double now = 0;              // when its "ok" came
+    double arrival = kUnknown;   // when its last byte reached the printer
+    int planner_free = -1;       // ADVANCED_OK's P, -1 when not said
+  };
+  void answered(const Answer& a, int planner_blocks, double time_scale);
+  // An answered command that is not a move; `waits`: one that may hold the
+  // queue for reasons other than the planner's room (M109, G28, G4, M400).
+  void answered_other(bool waits);
+  // "busy:" or a heating report: the printer is held.
+  void interrupted();
+
   // When a blocked move may go (kNever: with an answer).
   double wake() const { return wake_; }
   void clear_wake() { wake_ = kNever; }
+  // What the model believes of the printer's pace (pace_rate.hpp).
+  double speed_factor() const { return rate_.factor(); }
+  // Moves the model says the planner still holds at `now`.
+  int ahead(double now, int planner_blocks) const;
 
  private:
+  static constexpr std::size_t kHistory = 128;  // answered moves kept (a sample spans at most these)
+  struct Planned {
+    double entered;   // when it was answered
+    double seconds;   // its length at its feed rate, in the sender's seconds
+    double end;       // when the model says it ends
+    double released;  // when it was handed to the port (kNever: not known)
+  };
+  struct Released {
+    long long number = -1;
+    double at = 0;
+  };
   std::size_t blocks(int planner_blocks) const;
+  // Move `index` (a count of answered moves), kept while newer than oldest().
+  Planned& move(long long index) { return ring_[static_cast<std::size_t>(index) % kHistory]; }
+  const Planned& move(long long index) const { return ring_[static_cast<std::size_t>(index) % kHistory]; }
+  long long oldest() const { return std::max(answered_ - static_cast<long long>(kHistory) + 1, 1LL); }
+  const Planned* next_to_end(double now, int planner_blocks) const;
+  bool observe(long long freed, double entered, double late, bool bounded);
+  void sight(long long index, double t);
+  double end_with(long long from, double start, long long to, double factor) const;
+  void chain();
+  bool release(long long number, double now);
+  double shown(long long freed, double now) const;
 
-  // When the last answered moves end at the earliest (a ring of the planner's size).
-  std::array<double, 64> ends_{};
-  std::size_t next_ = 0;
-  double last_end_ = 0;
+  std::array<Planned, kHistory> ring_{};
+  long long answered_ = 0;      // moves answered; the newest is move(answered_)
+  long long known_ = 0;         // moves up to this one are known to have ended,
+  double anchor_ = -kNever;     // the last of them then
+  long long sighted_ = -1;      // the move whose end was last sighted,
+  double sighted_at_ = 0;       // then
+
+  double base_ = kNever;         // the least answer minus arrival: the host's own latency
+  double jitter_ = 0;           // how late answers that did not wait came, on average
+  bool clean_ = true;           // nothing but moves (or instant commands) since the last move
+  double last_now_ = -kNever;   // when the last move was answered
+  std::array<Released, kHistory> released_{};  // by line number
+  double floor_ = PaceRate::kMin;  // the speed the printer has shown lately
   double wake_ = kNever;
+  PaceRate rate_;
 };
 
 }  // namespace gcode::serial

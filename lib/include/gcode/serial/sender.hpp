@@ -293,8 +293,8 @@ class Sender : private TimeSink {
   void fill(double now);
   void send_unnumbered(std::string_view command, bool temperature_query, bool track);
   void push_flight(long long number, std::size_t bytes, bool temperature_query);
-  void acknowledge_front(double now);
-  void acknowledge_through(std::size_t index, double now);
+  void acknowledge_front(double now, int planner_free = -1);
+  void acknowledge_through(std::size_t index, double now, int planner_free = -1);
   void on_ok(const Response& r, double now);
   bool answers_handshake(const Response& r, double now);
   void on_resend(long long n, double now);
@@ -317,7 +317,7 @@ class Sender : private TimeSink {
   bool silent_command_in_flight() const;
   void detect_flavour();
   bool paced(double now);
-  void planned(const Slot& s, double now);
+  void planned(const Slot& s, const InFlight::Entry& f, double now, int planner_free);
   void log(LogLevel level, std::uint64_t input_line, std::string_view message) const;
   void relocate(long long expected, double now);
   bool check_position(std::string_view text, double now);
