@@ -8,13 +8,17 @@
 #
 #   bench/pace-table.sh [BUILD_BIN] [FIXTURE]     (about a minute)
 # GC_PACE_LINES (lines of the subdivided file, default 3000), GC_PACE_SCALE
-# (virtual printer time scale, default 5), GC_PACE_FACTORS ("1 1.25 2 10").
+# (virtual printer time scale, default 5), GC_PACE_FACTORS ("1 1.25 2 10"),
+# GC_PACE_PRINTER (more virtual printer options, e.g. advanced-ok) and
+# GC_PACE_OPTS (more gc-send options for both runs, e.g. --flow advanced-ok).
 set -euo pipefail
 bin=${1:-build/bin}
 fixture=${2:-tests/fixtures/prusa_cube_0.2_mk3s_rel_zhop.gcode}
 lines=${GC_PACE_LINES:-3000}
 scale=${GC_PACE_SCALE:-5}
 factors=${GC_PACE_FACTORS:-1 1.25 2 10}
+printer=${GC_PACE_PRINTER:+,$GC_PACE_PRINTER}
+more=${GC_PACE_OPTS:-}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 # From the first layer on (the start code's heating is not what is measured).
@@ -25,7 +29,7 @@ awk -v n="$lines" '/^;LAYER_CHANGE/ { on = 1 } on && k++ < n' "$tmp/all.gcode" >
 # "starved_percent commands_per_printer_second" of one run.
 one() {
   local factor=$1 opts=$2 err
-  err=$("$bin/gc-send" $opts --port "virtual:time-scale=$scale,heat-rate=100000,speed-factor=$factor" \
+  err=$("$bin/gc-send" $opts $more --port "virtual:time-scale=$scale,heat-rate=100000,speed-factor=$factor$printer" \
     "$tmp/in.gcode" 2>&1 >/dev/null) || { echo "gc-send failed: $err" >&2; return 1; }
   echo "$err" | awk -v scale="$scale" '
     /summary:/ { for (i = 1; i <= NF; i++) {
@@ -35,7 +39,7 @@ one() {
     END { printf "%s %.0f\n", s, (t > 0 ? n / (t * scale) : 0) }'
 }
 
-echo "gc-send pacing: $(wc -l <"$tmp/in.gcode") lines (gc-subdivide --max 0.2 of $(basename "$fixture")), time scale $scale"
+echo "gc-send pacing: $(wc -l <"$tmp/in.gcode") lines (gc-subdivide --max 0.2 of $(basename "$fixture")), time scale $scale${GC_PACE_PRINTER:+, printer $GC_PACE_PRINTER}${more:+, gc-send $more}"
 echo "| printer speed vs model | paced: starved | paced: commands/s | --no-pace: starved | --no-pace: commands/s | rate paced/unpaced |"
 echo "|---|---|---|---|---|---|"
 for f in $factors; do
