@@ -514,3 +514,28 @@ TEST_CASE("gc-send: a cancel on a file without a bed retracts and lifts before t
   }
   CHECK(end.at(gcode::kZ).to_double() >= highest_printed + 2 - 1e-9);
 }
+
+TEST_CASE("gc-send pacing: a printer twice as fast that reports ADVANCED_OK is followed, against --no-pace", "[gc-send][pace]") {
+  // Issue 23 §1: the open-loop pacer starved such a printer about half the
+  // print. Measured in one test from the virtual printer's own report, both
+  // runs on the same 1500 moves of 0.2 mm from layer 1 on. (What is left:
+  // the learning at the start; the issue's goal is unpaced + 1 %.)
+  std::string file = gctest::temp_dir() + "/fast.gcode";
+  auto made = gctest::run(quote(tool_path("gc-subdivide")) + " --max 0.2 " +
+                          quote(gctest::fixture_path("prusa_cube_0.2_mk3s_rel_zhop.gcode")) +
+                          " | awk 'BEGIN { print \"G28\"; print \"G90\"; print \"M83\" } "
+                          "/^;LAYER_CHANGE/ { on = 1 } on && k++ < 1500' > " + quote(file));
+  REQUIRE(made.status == 0);
+  auto starved = [&](const std::string& args) {
+    auto r = gctest::run(quote(tool_path("gc-send")) + " --flow advanced-ok " + args +
+                         " --port virtual:time-scale=5,heat-rate=100000,advanced-ok,speed-factor=2 " + quote(file));
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    return number_after(r.err, "planner starved ");
+  };
+  double paced = starved("");
+  double unpaced = starved("--no-pace");
+  INFO("planner starved " << paced << " % paced, " << unpaced << " % with --no-pace");
+  CHECK(paced <= unpaced + 8);
+  CHECK(paced < 20);
+}
