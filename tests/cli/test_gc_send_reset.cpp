@@ -124,20 +124,28 @@ TEST_CASE("gc-send --delta: a reset stops the print with the gc-relayer recipe, 
 
 namespace {
 
-// gc-virtual-printer on a pty in `dir` (`$vp`), gc-send killed with SIGKILL
-// after `seconds`, then `then` (a shell script: $gs is what runs next).
-gctest::RunResult killed_then(const std::string& dir, const std::string& input, double seconds,
-                              const std::string& then, const std::string& resume_args = "") {
+// gc-virtual-printer on a pty in `dir` (`$vp`, with `printer_args`),
+// gc-send killed with SIGKILL once the shell snippet `kill_when` returns,
+// then `then` (a shell script: $gs is what runs next).
+gctest::RunResult killed_when(const std::string& dir, const std::string& input, const std::string& kill_when,
+                              const std::string& then, const std::string& resume_args = "",
+                              const std::string& printer_args = "--heat-rate 1000") {
   std::string port = dir + "/printer", journal = dir + "/print.journal";
   std::string send = quote(tool_path("gc-send")) + " --port " + quote(port) + " --journal " + quote(journal);
   std::string script =
-      quote(tool_path("gc-virtual-printer")) + " -q --time-scale 20 --heat-rate 1000 --link " + quote(port) +
-      " --log " + quote(dir + "/executed.log") + " & vp=$!\n" +
+      quote(tool_path("gc-virtual-printer")) + " -q --time-scale 20 " + printer_args + " --link " +
+      quote(port) + " --log " + quote(dir + "/executed.log") + " & vp=$!\n" +
       "for i in $(seq 500); do [ -e " + quote(port) + " ] && break; sleep 0.01; done\n" + send + " -q " +
-      quote(input) + " 2>/dev/null & gs=$!\nsleep " + std::to_string(seconds) + "\nkill -9 $gs; wait $gs 2>/dev/null\n" +
-      then + "\n" + send + " " + resume_args + " --resume " + quote(journal) + " " + quote(input) + " & gs=$!\n" +
+      quote(input) + " 2>/dev/null & gs=$!\n" + kill_when + "\nkill -9 $gs; wait $gs 2>/dev/null\n" + then + "\n" +
+      send + " " + resume_args + " --resume " + quote(journal) + " " + quote(input) + " & gs=$!\n" +
       "wait $gs; s=$?; kill $vp; wait $vp; exit $s";
   return run(script);
+}
+
+// ... killed after `seconds`.
+gctest::RunResult killed_then(const std::string& dir, const std::string& input, double seconds,
+                              const std::string& then, const std::string& resume_args = "") {
+  return killed_when(dir, input, "sleep " + std::to_string(seconds), then, resume_args);
 }
 
 }  // namespace
@@ -176,6 +184,34 @@ TEST_CASE("gc-send --resume after kill -9, and the printer resets during the res
     CHECK(r.err.find("the printer reset (it said \"start\")") != std::string::npos);
     CHECK(require_resumed(gctest::read_file(dir + "/executed.log"), expected).resets == 1);
   }
+}
+
+TEST_CASE("gc-send killed inside the way back after a printer reset: --resume makes the way back again",
+          "[gc-send][reset][resume]") {
+  auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
+  // gc-send is killed once the printer has acknowledged `after` lines of
+  // the resume sequence (heating, G92 Z, lift, G28 X Y, travel, descent,
+  // prime, modes; 0: as it goes out): the printer keeps running, and took
+  // some of them last. (The bed heats slowly enough for the kill to come
+  // inside the sequence.)
+  int inside = 0;
+  for (int after : {0, 1, 2, 3, 5}) {
+    INFO("killed " << after << " lines into the way back");
+    std::string dir = gctest::temp_dir();
+    const std::string journal = quote(dir + "/print.journal");
+    const std::string acked = "$(awk '/restore=[1-9]/{r=1} r && /^A /' " + journal + " 2>/dev/null | wc -l)";
+    auto r = killed_when(dir, pieces_file(),
+                         "for i in $(seq 5000); do grep -q 'restore=[1-9]' " + journal + " 2>/dev/null && [ " + acked +
+                             " -ge " + std::to_string(after) + " ] && break; sleep 0.002; done",
+                         "sleep 0.5", "", "--heat-rate 100 --fault reset@line=2500");
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    if (r.err.find("inside the way back after a reset; that way back again") != std::string::npos) ++inside;
+    const std::string ran = gctest::read_file(dir + "/executed.log");
+    REQUIRE(gctest::read_reset_log(ran).reset_at.size() == 1);
+    CHECK(require_resumed(ran, expected).resets == 1);
+  }
+  CHECK(inside >= 3);
 }
 
 TEST_CASE("gc-send --resume of a print killed while paused goes back into the pause, the printer kept running or reset",

@@ -48,6 +48,41 @@ std::string position_mismatch(const PositionReport& report, const MachineState& 
   return std::string();
 }
 
+// The height the nozzle stands at after a state (a z-hop's lift left out).
+double nozzle_height(const MachineState& s) { return s.lifted ? s.lift_base_z : s.position[kZ]; }
+
+// The printer kept running and took line `i` last, a line of the resume
+// after an earlier reset: the way back is made again, as after a reset, to
+// the command that resume went back to. Until the resume's G92 Z ran the
+// nozzle stands where the reset left it (the highest of the moves between
+// that command and the resume, as the live resume took it); after, the
+// printer's own Z is right.
+// `i`: a line of the way back; `reached`: the machine after the last line
+// of it the printer took, `taken` its number.
+ResumePlan after_stop_in_way_back(const JournalContents& journal, std::size_t i, const MachineState& reached,
+                                  std::uint64_t taken, ResumePlan plan) {
+  const std::uint64_t back = journal.entries[i].point.count("restore");
+  const std::size_t r = index_of(journal, back);
+  if (r == std::string::npos || r >= i) {
+    plan.refusal = fmt::format("the journal no longer holds line {}, where an earlier resume went back to", back);
+    return plan;
+  }
+  if (!take_entry(journal, r, plan)) return plan;
+  double z_high = nozzle_height(plan.state);
+  MachineState s;
+  std::string problem;
+  for (std::size_t k = r + 1; k < i && journal.entries[k].point.count("restore") != back; ++k)
+    if (read_machine_fields(journal.entries[k].point, s, problem)) z_high = std::max(z_high, nozzle_height(s));
+  if (reached.known[kZ]) z_high = reached.position[kZ];
+  plan.track = read_track_fields(journal.entries[r].point, plan.state);
+  plan.condition = PrinterCondition::Reset;
+  plan.way_back_line = taken;
+  plan.primed = reached.known[kE];  // E is known from the prime on
+  if (z_high > nozzle_height(plan.state) + 1e-9) plan.nozzle_z = z_high;
+  plan.possible = true;
+  return plan;
+}
+
 ResumePlan after_keep_running(const JournalContents& journal, const PrinterFindings& printer,
                               const ResumeLimits& limits, ResumePlan plan) {
   if (printer.expected_line < 1) {
@@ -62,6 +97,12 @@ ResumePlan after_keep_running(const JournalContents& journal, const PrinterFindi
     return plan;
   }
   if (!take_entry(journal, i, plan)) return plan;
+  const std::uint64_t restore = journal.entries[i].point.count("restore");
+  if (restore != 0) return after_stop_in_way_back(journal, i, plan.state, last_run, plan);
+  // It took the way back's handshake (M110 numbered on from line i: the
+  // printer had reset) and none of its lines.
+  if (i + 1 < journal.entries.size() && journal.entries[i + 1].point.count("restore") != 0)
+    return after_stop_in_way_back(journal, i + 1, MachineState{}, last_run, plan);
   if (printer.position) {
     plan.refusal = position_mismatch(*printer.position, plan.state, limits.position_tolerance);
     if (!plan.refusal.empty()) return plan;
@@ -69,9 +110,6 @@ ResumePlan after_keep_running(const JournalContents& journal, const PrinterFindi
   plan.possible = true;
   return plan;
 }
-
-// The height the nozzle stands at after a state (a z-hop's lift left out).
-double nozzle_height(const MachineState& s) { return s.lifted ? s.lift_base_z : s.position[kZ]; }
 
 bool is_move(const MachineState& before, const MachineState& after) {
   return before.exact != after.exact;

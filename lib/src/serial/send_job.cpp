@@ -235,6 +235,7 @@ void go_on(Sender& sender, const ResumeStart& start, bool quiet) {
     return;
   }
   ResetResume way{plan.state, plan.track.top_z, plan.nozzle_z, plan.track.retracted, plan.track.retraction};
+  if (plan.primed) way.prime = way.retracted;  // pushed back already: no second prime
   std::vector<std::string> sequence;
   try {
     sequence = reset_resume_lines(way, Precision());
@@ -243,7 +244,13 @@ void go_on(Sender& sender, const ResumeStart& start, bool quiet) {
   }
   sender.continue_after_reset(start.next - 1, start.last, plan.layer, sequence, plan.state, plan.track,
                               plan.input_line);
-  if (!quiet)
+  if (quiet) return;
+  if (plan.way_back_line != 0)
+    fmt::print(stderr,
+               "gc-send: resuming: the printer kept running and took line {} last, inside the way back after a "
+               "reset; that way back again, to input line {} (layer {}): heating, Z declared, X and Y homed\n",
+               plan.way_back_line, plan.input_line, plan.layer);
+  else
     fmt::print(stderr,
                "gc-send: resuming: the printer reset since the print stopped ({}); going back to input line {} "
                "(layer {}): heating, Z declared, X and Y homed, {} moves ({:.1f} mm) may print twice\n",

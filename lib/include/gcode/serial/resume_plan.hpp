@@ -19,6 +19,11 @@
 //    twice, which the plan counts), after a resume sequence that heats,
 //    homes X and Y only and sets Z and E from the journal. The lines of an
 //    earlier such resume (field restore) go back to where it went.
+//  * It kept running, but gc-send had stopped inside such a resume (the
+//    last line the printer took is one of it): the resume is made again
+//    from where it went back to, Z declared where those lines left the
+//    nozzle (once their G92 Z ran, the printer's Z is right), the prime left
+//    out when it ran already.
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -61,6 +66,10 @@ struct ResumePlan {
   // Reset: the highest Z the nozzle may stand at (it stopped after one of
   // the moves that may print twice); NaN: the state's own Z.
   double nozzle_z = std::numeric_limits<double>::quiet_NaN();
+  // Kept running inside an earlier reset's resume: the last line of it the
+  // printer took (0: not so), and whether its prime had run.
+  std::uint64_t way_back_line = 0;
+  bool primed = false;
 };
 
 ResumePlan plan_resume(const JournalContents& journal, const PrinterFindings& printer, const ResumeLimits& limits);
