@@ -442,8 +442,9 @@ void Sender::on_capability(std::string_view text) {
   if (said.names_firmware && firmware_.time_scale > 0 && firmware_.baud > 0)
     set_link(firmware_.baud / 10 * firmware_.time_scale, firmware_.time_scale);
   if (said.max_line) {
-    // Only from the handshake: lines already checked must stay valid.
-    if (state_ == SenderState::Printing) {
+    // Only from the handshake, and only if the lines already checked and
+    // waiting to go out (a reset's way back and its re-run) still fit.
+    if (state_ == SenderState::Printing || !waiting_lines_fit(firmware_.max_line)) {
       firmware_.max_line = max_line;
     } else if (config_.max_line_from_firmware) {
       config_.max_line = firmware_.max_line;
@@ -451,6 +452,12 @@ void Sender::on_capability(std::string_view text) {
   }
   if (firmware_.advanced_ok && config_.firmware->advanced_ok_possible) flow_.firmware_has_advanced_ok();
   if (said.names_firmware) detect_flavour();
+}
+
+bool Sender::waiting_lines_fit(std::size_t max_line) const {
+  for (long long n = next_send_; n < next_number_; ++n)
+    if (slot(n).wire.size() > max_line) return false;  // (wire: with its newline, as the limit counts)
+  return true;
 }
 
 // The firmware named in the answer to M115 picks the description, before

@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "gcode/core/line.hpp"
+#include "gcode/serial/line_check.hpp"
 #include "gcode/serial/sender.hpp"
 
 namespace gcode::serial {
@@ -142,13 +143,12 @@ void Sender::printer_reset(std::string_view how, double now) {
                 : fmt::format("the printer reset ({}) after {}; going back to {}: heating, Z declared, X and Y homed, "
                               "{} moves ({:.1f} mm) may print twice",
                               how, describe(last_acked_), describe(from), moves, mm));
-  resubmit_after_reset(back, sequence);
-  restart_handshake(now);
+  if (resubmit_after_reset(back, sequence)) restart_handshake(now);
 }
 
 // Everything after `back` in the print's order goes out again, after the
 // sequence, numbered on from the highest number used.
-void Sender::resubmit_after_reset(long long back, const std::vector<std::string>& sequence) {
+bool Sender::resubmit_after_reset(long long back, const std::vector<std::string>& sequence) {
   std::vector<Again> again;
   for (long long n = last_enqueued_; n != back && n > 0; n = slot(n).prev) {
     const Slot& s = slot(n);
@@ -171,14 +171,33 @@ void Sender::resubmit_after_reset(long long back, const std::vector<std::string>
   for (const std::string& line : sequence) enqueue(line, 0, layer);
   restoring_ = 0;
   machine_ = target;
-  for (const Again& a : again) enqueue(a.command, a.source_line, a.layer);
+  for (const Again& a : again) {
+    // A higher number makes a line longer: it must still fit the buffer.
+    LineCheck check = check_line(a.command, next_number_, config_.max_line);
+    if (check.problem != LineProblem::None && check.problem != LineProblem::Shortened) {
+      fail(fmt::format("the printer reset, and input line {} no longer fits under its new number: {}", a.source_line,
+                       serial::describe(check, config_.max_line)));
+      return false;
+    }
+    enqueue(check.problem == LineProblem::Shortened ? check.command : a.command, a.source_line, a.layer);
+  }
+  return true;
 }
 
 // The link as a restarted printer has it: nothing in flight, no numbers.
 void Sender::restart_handshake(double now) {
+  // A line the reset cut off (part of it written): a newline ends the
+  // fragment, which a printer that kept its buffer refuses on its own (no
+  // checksum) instead of reading it glued to the handshake.
+  const bool cut = out_pos_ > 0 && out_[out_pos_ - 1] != '\n';
   out_total_ -= out_.size() - out_pos_;
+  if (out_.size() > out_pos_) ++output_discards_;
   out_.clear();
   out_pos_ = 0;
+  if (cut) {
+    out_ += '\n';
+    ++out_total_;
+  }
   flight_.clear();
   resend_ = ResendState();
   probes_ = ProbeBackoff();

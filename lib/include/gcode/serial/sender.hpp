@@ -201,6 +201,9 @@ class Sender : private TimeSink {
   // The number the last submitted command got (0: none yet).
   long long last_submitted() const { return next_number_ - 1; }
   long long highest_sent() const { return highest_sent_; }
+  // How often output not yet written was thrown away (a printer reset: the
+  // restarted printer never gets it).
+  std::uint64_t output_discards() const { return output_discards_; }
   // The printer's last temperature report ("T:205.00 /205.00 B:60.00 /60.00"; "" before one).
   const std::string& temperatures() const { return temperatures_; }
 
@@ -316,6 +319,7 @@ class Sender : private TimeSink {
   bool waiting_for_user() const;
   bool silent_command_in_flight() const;
   void detect_flavour();
+  bool waiting_lines_fit(std::size_t max_line) const;
   bool paced(double now);
   void planned(const Slot& s, const InFlight::Entry& f, double now, int planner_free);
   void log(LogLevel level, std::uint64_t input_line, std::string_view message) const;
@@ -327,7 +331,8 @@ class Sender : private TimeSink {
   bool in_history(long long n) const {
     return n >= std::max(first_held_, next_send_ - kHistory) && n < next_number_;
   }
-  void resubmit_after_reset(long long restore, const std::vector<std::string>& sequence);
+  // False when the print failed instead (a line no longer fits under its new number).
+  bool resubmit_after_reset(long long restore, const std::vector<std::string>& sequence);
   void restart_handshake(double now);
   std::string handshake_line() const;
   void track(Slot& s, const Line& line, const Move& move);
@@ -349,6 +354,7 @@ class Sender : private TimeSink {
   long long highest_sent_ = 0;
   InFlight flight_;
   std::uint64_t out_total_ = 0;     // bytes ever put into out_
+  std::uint64_t output_discards_ = 0;
   std::uint64_t written_total_ = 0; // bytes ever handed to the port
 
   bool input_done_ = false;
