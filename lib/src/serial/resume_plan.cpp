@@ -51,14 +51,13 @@ std::string position_mismatch(const PositionReport& report, const MachineState& 
 // The height the nozzle stands at after a state (a z-hop's lift left out).
 double nozzle_height(const MachineState& s) { return s.lifted ? s.lift_base_z : s.position[kZ]; }
 
-// The printer kept running and took line `i` last, a line of the resume
-// after an earlier reset: the way back is made again, as after a reset, to
-// the command that resume went back to. Until the resume's G92 Z ran the
+// The printer kept running inside the way back after an earlier reset (`i`:
+// one of its lines; `reached`: the machine after the last line of it the
+// printer took, `taken` that line's number): the way back is made again, as
+// after a reset, to the command it went back to. Until its G92 Z ran the
 // nozzle stands where the reset left it (the highest of the moves between
-// that command and the resume, as the live resume took it); after, the
+// that command and the way back, as the live resume took it); after, the
 // printer's own Z is right.
-// `i`: a line of the way back; `reached`: the machine after the last line
-// of it the printer took, `taken` its number.
 ResumePlan after_stop_in_way_back(const JournalContents& journal, std::size_t i, const MachineState& reached,
                                   std::uint64_t taken, ResumePlan plan) {
   const std::uint64_t back = journal.entries[i].point.count("restore");
@@ -97,8 +96,7 @@ ResumePlan after_keep_running(const JournalContents& journal, const PrinterFindi
     return plan;
   }
   if (!take_entry(journal, i, plan)) return plan;
-  const std::uint64_t restore = journal.entries[i].point.count("restore");
-  if (restore != 0) return after_stop_in_way_back(journal, i, plan.state, last_run, plan);
+  if (journal.entries[i].point.count("restore") != 0) return after_stop_in_way_back(journal, i, plan.state, last_run, plan);
   // It took the way back's handshake (M110 numbered on from line i: the
   // printer had reset) and none of its lines.
   if (i + 1 < journal.entries.size() && journal.entries[i + 1].point.count("restore") != 0)
