@@ -96,7 +96,8 @@ ResumePlan after_keep_running(const JournalContents& journal, const PrinterFindi
     return plan;
   }
   if (!take_entry(journal, i, plan)) return plan;
-  if (journal.entries[i].point.count("restore") != 0) return after_stop_in_way_back(journal, i, plan.state, last_run, plan);
+  if (journal.entries[i].point.count("restore") != 0)
+    return after_stop_in_way_back(journal, i, plan.state, last_run, plan);
   // It took the way back's handshake (M110 numbered on from line i: the
   // printer had reset) and none of its lines.
   if (i + 1 < journal.entries.size() && journal.entries[i + 1].point.count("restore") != 0)
