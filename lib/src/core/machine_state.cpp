@@ -33,6 +33,29 @@ Fixed word_mm(const Word& w, bool inches) {
   return Fixed::from_units(t >= 0 ? (t + 5) / 10 : (t - 5) / 10);
 }
 
+// One axis of a move: its new position, exact and as a double. Forced
+// inline: as a lambda GCC called it out of line four times a move (perf).
+[[gnu::always_inline]] inline double axis_end(MachineState& s, int a, const Word* w, double was) {
+  if (w == nullptr || !w->has_value) return was;
+  auto i = static_cast<std::size_t>(a);
+  const bool relative = a == kE ? s.relative_e : s.relative_xyz;
+  if (!s.inches && w->plain && w->decimals <= Fixed::kDecimals && !relative) {
+    // The common case: an absolute plain decimal in mm. Its double is the
+    // word's own value, no division by 10^9 needed.
+    s.exact[i] = w->fixed();
+    s.known[i] = true;
+    return w->value();
+  }
+  Fixed v = word_mm(*w, s.inches);
+  if (relative) {
+    s.exact[i] += v;
+  } else {
+    s.exact[i] = v;
+    s.known[i] = true;
+  }
+  return s.exact[i].to_double();
+}
+
 void apply_motion(MachineState& s, const Line& line, Move& m) {
   const bool inches = s.inches;
   // One pass over the words instead of a find() per letter (this runs for
@@ -58,31 +81,11 @@ void apply_motion(MachineState& s, const Line& line, Move& m) {
   // CPU's store forwarding, which cost more than the rest of this function.
   const double start[4] = {s.position[kX], s.position[kY], s.position[kZ], s.position[kE]};
   const Fixed e0 = s.exact[kE];
-  // Each axis in a scalar of its own (the lambda is inlined with a constant
-  // axis): an array indexed in a loop was stored 8 bytes at a time and then
-  // copied 16 at a time, a store-forwarding stall on every move.
-  auto axis_end = [&s, inches](int a, const Word* w, double was) -> double {
-    if (w == nullptr || !w->has_value) return was;
-    auto i = static_cast<std::size_t>(a);
-    bool relative = a == kE ? s.relative_e : s.relative_xyz;
-    if (!inches && w->plain && w->decimals <= Fixed::kDecimals && !relative) {
-      // The common case: an absolute plain decimal in mm. Its double is the
-      // word's own value, no division by 10^9 needed.
-      s.exact[i] = w->fixed();
-      s.known[i] = true;
-      return w->value();
-    }
-    Fixed v = word_mm(*w, inches);
-    if (relative) {
-      s.exact[i] += v;
-    } else {
-      s.exact[i] = v;
-      s.known[i] = true;
-    }
-    return s.exact[i].to_double();
-  };
-  const double end[4] = {axis_end(kX, axis[kX], start[kX]), axis_end(kY, axis[kY], start[kY]),
-                         axis_end(kZ, axis[kZ], start[kZ]), axis_end(kE, axis[kE], start[kE])};
+  // Each axis in a scalar of its own (inlined with a constant axis): an
+  // array indexed in a loop was stored 8 bytes at a time and then copied 16
+  // at a time, a store-forwarding stall on every move.
+  const double end[4] = {axis_end(s, kX, axis[kX], start[kX]), axis_end(s, kY, axis[kY], start[kY]),
+                         axis_end(s, kZ, axis[kZ], start[kZ]), axis_end(s, kE, axis[kE], start[kE])};
   s.position = Vec4{{end[kX], end[kY], end[kZ], end[kE]}};
   m.end = s.position;
   m.feedrate = s.feedrate;
