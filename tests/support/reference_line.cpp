@@ -165,7 +165,11 @@ ReferenceLine reference_parse(std::string_view text) {
   if ((*p == 'N' || *p == 'n') && p + 1 != code_end && is_digit(p[1])) {
     const char* q = p + 1;
     long long n = 0;
-    while (q != code_end && is_digit(*q)) n = n * 10 + (*q++ - '0');
+    // Capped as Line::parse caps it: twenty digits must not overflow.
+    while (q != code_end && is_digit(*q)) {
+      if (n < (1LL << 58)) n = n * 10 + (*q - '0');
+      ++q;
+    }
     line.has_line_number = true;
     line.line_number = n;
     p = q;
@@ -215,7 +219,12 @@ ReferenceLine reference_parse(std::string_view text) {
   if (p != code_end && *p == '.' && p + 1 != code_end && is_digit(p[1])) {
     ++p;
     int s = 0;
-    while (p != code_end && is_digit(*p)) s = s * 10 + (*p++ - '0');
+    // Capped like the command number (and like Line::parse): a subcode of a
+    // dozen digits is junk, and must not overflow.
+    while (p != code_end && is_digit(*p)) {
+      if (s < 100000) s = s * 10 + (*p - '0');
+      ++p;
+    }
     line.subcode = s;
   }
   line.command = std::string_view(command_start, static_cast<std::size_t>(p - command_start));
