@@ -100,6 +100,23 @@ TEST_CASE("malformed lines are flagged, never thrown", "[line]") {
   CHECK_NOTHROW(Line::parse(huge));
 }
 
+TEST_CASE("a slicer's move line through the fast path: every field as the full scan gives it", "[line]") {
+  Line l = Line::parse("G1 X114.275 Y-96.8 E.18786 ; perimeter");
+  CHECK(l.kind == CommandKind::Standard);
+  CHECK(l.is_g(1));
+  CHECK(l.subcode == -1);
+  CHECK(l.command == "G1");
+  CHECK_FALSE(l.malformed);
+  REQUIRE(l.word_count() == 3);
+  CHECK(l.word(0).raw == "114.275");
+  CHECK(l.word(0).mantissa == 114275);
+  CHECK(l.word(0).decimals == 3);
+  CHECK(l.word(1).mantissa == -968);
+  CHECK(l.word(2).value() == 0.18786);
+  CHECK(l.comment == "; perimeter");
+  CHECK(l.comment_pos == 27);
+}
+
 TEST_CASE("words know how many decimals they were written with", "[line]") {
   Line l = Line::parse("G1 X10 Y-.80 Z1.125 E1e-3 F7800.000");
   CHECK(l.find('X')->decimals == 0);
@@ -134,7 +151,14 @@ TEST_CASE("the single-pass parser agrees with the reference on odd lines", "[lin
                        "G1\rX1", "T0", "M104 S210 T1 ; heat", "G92 E0.0", "G1 X12345678901234567890 Y1",
                        "G1 X0.1234567890123 Y1", "  ;  comment only", "", "   ", "G1 X1 Y2 ;; x ; y", "(only)",
                        "G1 X1 )", "G1 X1 *12 ;c", "N1 G1 X2*99 (x)", "(a) (b) ; c", "(a ; b) c", "(a)*12",
-                       "(a (b) c)", "(unclosed", " (x)\t", "(a) G1 X1"};
+                       "(a (b) c)", "(unclosed", " (x)\t", "(a) G1 X1",
+                       // The move fast path's edges (each falls back or agrees).
+                       "G1 X5.", "G1 X-0", "G1 X.", "G1 X-", "G1 X5;c", "G1 X5*12", "G1 X5 *12", "G1 XY5", "G1 X5\t",
+                       "G1 X1.2.3", "G1 x5", "G1  X5  ", "G0", "G3 X1 Y2 I3 J4 E.5", "G1 X000000000000000001",
+                       "G1 X0000000000000000001", "G1 X5 N3", "G1 X\x8c", "G1;c", "G10 X1",
+                       // Subcodes and line numbers too long for an int: capped, not overflowed.
+                       "G1.222222222222", "G1.2222222222222222222 X1", "N99999999999999999999999 G1 X1",
+                       "N121  G\x8c"};
   for (const char* text : odd) {
     INFO("'" << text << "'");
     CHECK(gctest::compare_with_reference(Line::parse(text), gctest::reference_parse(text)) == "");

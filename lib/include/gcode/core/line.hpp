@@ -113,6 +113,7 @@ class Line {
  private:
   const char* find_code_end(const char* p, const char* end);
   // The steps of parse(), in the order a line is read (line.cpp).
+  bool parse_move_fast(const char* p, const char* end);
   bool parse_line_number(const char*& p, const char* end);
   void parse_free_text(const char* p, const char* end);
   bool parse_command(const char*& p, const char* end);
