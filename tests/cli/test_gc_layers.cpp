@@ -135,14 +135,7 @@ TEST_CASE("filament in the layers equals the slicer's own figure within 0.1 %", 
   }
 }
 
-TEST_CASE("extracting all layers (--extract 1-) reproduces every fixture byte for byte", "[gc-layers][property]") {
-  for (const auto& name : gctest::fixture_names()) {
-    INFO(name);
-    auto r = run(gctest::tool_command("gc-layers", "--extract 1- " + quote(fixture_path(name))));
-    REQUIRE(r.status == 0);
-    CHECK(r.out == read_file(fixture_path(name)));
-  }
-}
+// --extract 1- writing every fixture byte for byte: tests/cli/test_conventions.cpp.
 
 TEST_CASE("an extract of a middle range replays exactly the moves of those layers", "[gc-layers][property]") {
   for (const auto& name : gctest::fixture_names()) {
