@@ -3,7 +3,8 @@
 #
 #   bench/run.sh
 #
-# Builds a Release tree in build-bench, makes bench/data/large.gcode (>= 150 MB
+# Builds a Release tree in build-bench (without ccache: every object compiled
+# here, from this tree, with the bench's flags), makes bench/data/large.gcode (>= 150 MB
 # of real PrusaSlicer G-code, see make-large.sh) and a half-size copy, then
 # times, with a warm page cache and the output on the same disk:
 #   cat FILE > OUT                       the ceiling the issue names; GNU cat copies
@@ -15,6 +16,8 @@
 #                                        (and checks OUT is identical to FILE)
 #   gc-subdivide, gc-pause-at            as pass-through filters (nothing to split,
 #                                        one pause)
+#   gc-pause-at | gc-subdivide | gc-speedup   the three as a pipeline (one pause,
+#                                        nothing to split, an empty region)
 #   parse_bench STAGE FILE > OUT         the same pass piece by piece
 # then runs every bench/parts/*.sh (other tools' benchmarks) and prints a
 # summary table. Environment: GC_BENCH_RUNS (best of N, default 5),
@@ -41,8 +44,11 @@ fi
 source "$here/measure.sh"
 
 echo "== building (Release, $build)"
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DGCODE_TESTS=OFF -DGCODE_BENCH=ON >/dev/null
-if ! cmake --build "$build" -j"$(nproc)" >"$build/bench-build.log" 2>&1; then
+# An empty launcher overrides one cached or taken from CMAKE_CXX_COMPILER_LAUNCHER;
+# CCACHE_DISABLE covers a ccache masquerading as the compiler in PATH.
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DGCODE_TESTS=OFF -DGCODE_BENCH=ON \
+  -DCMAKE_CXX_COMPILER_LAUNCHER= -DCMAKE_C_COMPILER_LAUNCHER= >/dev/null
+if ! CCACHE_DISABLE=1 cmake --build "$build" -j"$(nproc)" >"$build/bench-build.log" 2>&1; then
   cat "$build/bench-build.log" >&2
   exit 1
 fi
@@ -99,7 +105,7 @@ echo "== the full pass against cat"
 bench_one "cat FILE > OUT" "the ceiling (copy_file_range: the kernel copies)" cat
 bench_one "dd bs=256k (read + write)" "the ceiling of a program that reads and writes" "$here/dd-copy.sh"
 dd_mbs=$(printf '%s\n' "${rows[1]}" | cut -f2)
-bench_one "gc-layers --extract 1- FILE > OUT" "full pass, the target is >= 40% of cat" "$bin/gc-layers" --extract 1-
+bench_one "gc-layers --extract 1- FILE > OUT" "full pass, the target is >= 40% of dd" "$bin/gc-layers" --extract 1-
 if cmp -s "$out" "$file"; then
   echo "gc-layers --extract 1-: output identical to the input"
 else
@@ -108,6 +114,17 @@ else
 fi
 bench_one "gc-subdivide --max 1000 (nothing to split)" "pass-through filter" "$bin/gc-subdivide" --max 1000
 bench_one "gc-pause-at --before-layer 4500 --park 0,200" "pass-through filter with one pause" "$bin/gc-pause-at" --before-layer 4500 --park 0,200
+mv "$out" "$tmp/paused.gcode"
+# The three as the suite is used (bash -c: time counts the whole pipeline's CPU).
+# shellcheck disable=SC2016
+bench_one "gc-pause-at | gc-subdivide | gc-speedup" "the pipeline: one pause, nothing to split, an empty region" \
+  bash -c 'set -o pipefail; "$0/gc-pause-at" --before-layer 4500 --park 0,200 "$1" | "$0/gc-subdivide" --max 1000 |
+    "$0/gc-speedup" --factor 3 --z-range 100000: -q' "$bin"
+if ! cmp -s "$out" "$tmp/paused.gcode"; then
+  echo "bench: the pipeline's output is not gc-pause-at's alone" >&2
+  exit 1
+fi
+rm -f "$tmp/paused.gcode"
 echo
 echo "== the same pass piece by piece (bench/parse_bench)"
 bench_one "split (LineReader)" "block reads, lines split in place" "$bin/parse_bench" split
