@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include <random>
+
 #include "gcode/core/line.hpp"
 
 using gcode::CommandKind;
@@ -158,9 +160,35 @@ TEST_CASE("the single-pass parser agrees with the reference on odd lines", "[lin
                        "G1 X0000000000000000001", "G1 X5 N3", "G1 X\x8c", "G1;c", "G10 X1",
                        // Subcodes and line numbers too long for an int: capped, not overflowed.
                        "G1.222222222222", "G1.2222222222222222222 X1", "N99999999999999999999999 G1 X1",
-                       "N121  G\x8c"};
+                       "N121  G\x8c",
+                       // Digit runs of 7 to 19, at the line's end, before bytes next to the digits or above 0x7f.
+                       "G1 X1234567", "G1 X12345678", "G1 X123456789 Y1", "G1 X.12345678", "G1 X1234567.12345678",
+                       "G1 X123456789.123456789", "G1 X1234567890.12345678", "G1 X12\xb0 Y1", "G1 X1\x8a" "5 Y1",
+                       "G1 X12/4", "G1 X12:4", "G1 Y9 X1234567890123456789", "G1 E.0214799"};
   for (const char* text : odd) {
     INFO("'" << text << "'");
     CHECK(gctest::compare_with_reference(Line::parse(text), gctest::reference_parse(text)) == "");
   }
+}
+
+TEST_CASE("the single-pass parser agrees with the reference on random move lines", "[line][property]") {
+  // The move fast path's digit runs, blanks, points and signs in every order
+  // and length, with bytes next to the digits ('/', ':') and above 0x7f.
+  const std::string_view alphabet = "G1 XYEF.-0123456789;/:\x8a\xff";
+  std::mt19937 random(25);
+  std::size_t differ = 0;
+  std::string first;
+  for (int i = 0; i < 200000; ++i) {
+    std::string text = i % 2 == 0 ? "G1 X" : "G0 ";
+    const std::size_t length = random() % 40;
+    for (std::size_t k = 0; k < length; ++k) {
+      // Mostly digits, so runs of every length come up.
+      const std::size_t pick = random() % 3 == 0 ? random() % alphabet.size() : 9 + random() % 10;
+      text += alphabet[pick];
+    }
+    std::string diff = gctest::compare_with_reference(Line::parse(text), gctest::reference_parse(text));
+    if (!diff.empty() && differ++ == 0) first = "'" + text + "' differs in " + diff;
+  }
+  INFO(first);
+  CHECK(differ == 0);
 }
