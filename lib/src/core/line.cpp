@@ -93,21 +93,27 @@ std::string_view trim(std::string_view s) {
 
 }  // namespace
 
+namespace {
+
+// A view into a line's text moved to the same place in a copy of it.
+inline std::string_view moved(std::string_view v, std::uintptr_t from, std::uintptr_t to) {
+  if (v.data() == nullptr) return v;
+  return std::string_view(reinterpret_cast<const char*>(reinterpret_cast<std::uintptr_t>(v.data()) - from + to), v.size());
+}
+
+}  // namespace
+
 void Line::copy_onto(std::string_view new_text, Line& out) const {
   const auto from = reinterpret_cast<std::uintptr_t>(text.data());
   const auto to = reinterpret_cast<std::uintptr_t>(new_text.data());
-  auto move = [from, to](std::string_view v) {
-    if (v.data() == nullptr) return v;
-    return std::string_view(reinterpret_cast<const char*>(reinterpret_cast<std::uintptr_t>(v.data()) - from + to), v.size());
-  };
   out.text = new_text;
   out.kind = kind;
   out.letter = letter;
   out.number = number;
   out.subcode = subcode;
-  out.command = move(command);
-  out.argument = move(argument);
-  out.comment = move(comment);
+  out.command = moved(command, from, to);
+  out.argument = moved(argument, from, to);
+  out.comment = moved(comment, from, to);
   out.comment_pos = comment_pos;
   out.has_line_number = has_line_number;
   out.line_number = line_number;
@@ -117,8 +123,18 @@ void Line::copy_onto(std::string_view new_text, Line& out) const {
   out.count_ = count_;
   for (std::size_t i = 0; i < count_; ++i) {
     Word& w = *::new (&out.words_.at[i]) Word(words_.at[i]);
-    w.raw = move(w.raw);
+    w.raw = moved(w.raw, from, to);
   }
+}
+
+void Line::rebase(std::string_view new_text) {
+  const auto from = reinterpret_cast<std::uintptr_t>(text.data());
+  const auto to = reinterpret_cast<std::uintptr_t>(new_text.data());
+  text = new_text;
+  command = moved(command, from, to);
+  argument = moved(argument, from, to);
+  comment = moved(comment, from, to);
+  for (std::size_t i = 0; i < count_; ++i) words_.at[i].raw = moved(words_.at[i].raw, from, to);
 }
 
 double Word::value_slow() const {

@@ -177,7 +177,7 @@ class LayerTracker {
   void resolve_heuristic(const View& extrusion);
   void emit_tail(std::size_t from, std::size_t to);
   void emit(const View& v);
-  void emit_item(const Item& item, const std::string& arena, const MachineState& before);
+  void emit_item(Item& item, const std::string& arena, const MachineState& before);
   void begin_layer(LayerInfo info, std::size_t boundary, const View& extrusion);
   bool spiral_turn(const View& extrusion);
   const MachineState& tail_state_before(std::size_t index) const;

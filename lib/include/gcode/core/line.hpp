@@ -104,6 +104,8 @@ class Line {
   // the words in use are copied. Addresses are compared as integers, so this
   // line's own text may be gone by now.
   void copy_onto(std::string_view text, Line& out) const;
+  // The same in place: this line's views moved onto `text`, a copy of its text.
+  void rebase(std::string_view text);
 
   // The text of the comment without its marker and surrounding spaces.
   std::string_view comment_text() const;
