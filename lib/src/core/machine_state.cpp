@@ -39,12 +39,17 @@ Fixed word_mm(const Word& w, bool inches) {
   if (w == nullptr || !w->has_value) return was;
   auto i = static_cast<std::size_t>(a);
   const bool relative = a == kE ? s.relative_e : s.relative_xyz;
-  if (!s.inches && w->plain && w->decimals <= Fixed::kDecimals && !relative) {
-    // The common case: an absolute plain decimal in mm. Its double is the
-    // word's own value, no division by 10^9 needed.
-    s.exact[i] = w->fixed();
-    s.known[i] = true;
-    return w->value();
+  if (!s.inches && w->plain && w->decimals <= Fixed::kDecimals) {
+    if (!relative) {
+      // The common case: an absolute plain decimal in mm. Its double is the
+      // word's own value, no division by 10^9 needed.
+      s.exact[i] = w->fixed();
+      s.known[i] = true;
+      return w->value();
+    }
+    // Relative E as most slicers write it: no call to convert units.
+    s.exact[i] += w->fixed();
+    return s.exact[i].to_double();
   }
   Fixed v = word_mm(*w, s.inches);
   if (relative) {
