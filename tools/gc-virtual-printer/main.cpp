@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
                  "silent-after=N halt-after=N disconnect-after=N (N commands), seed=S; at a chosen moment: "
                  "reset@WHEN (the board restarts), drop=S@WHEN (the link is gone S simulated seconds, the board "
                  "runs on), drop-reset=S@WHEN (and restarts when it returns), WHEN being line=N (after command "
-                 "N), time=S (simulated second S) or layer=N (after the first extruding move of layer N)")
+                 "N, or the first numbered past it), time=S (simulated second S) or layer=N (after the first extruding move of layer N)")
       ->type_name("KEY=VALUE");
   std::string greeting = "start";
   app.add_option("--greeting", greeting,

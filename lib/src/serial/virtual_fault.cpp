@@ -77,7 +77,8 @@ bool FaultSchedule::take_after_command(long long number, int started_layer, Sche
   return take_if(
       fault,
       [](const ScheduledFault& f, double n, double layer) {
-        if (f.trigger == ScheduledFault::Trigger::Line) return n >= 0 && f.at == n;
+        // (A host that numbers on after a reset may jump past N.)
+        if (f.trigger == ScheduledFault::Trigger::Line) return n >= 0 && n >= f.at;
         return f.trigger == ScheduledFault::Trigger::Layer && layer > 0 && f.at == layer;
       },
       static_cast<double>(number), started_layer);
