@@ -44,8 +44,8 @@ void add_send_options(Tool& tool, SendOptions& o) {
   app.add_flag("--reset,!--no-reset", j.reset, "Pulse DTR to restart the board on connect (default: no)")->group(link);
   app.add_option("--reconnect", j.reconnect,
                  "When the port fails mid-print (EIO, ENODEV, a hang-up), wait up to SECONDS for it to come back at "
-                 "the same path, open it again without a DTR reset and go on where the printer is (default 180; "
-                 "0: stop at once)")
+                 "the same path, open it again without a DTR reset and go on where the printer is; with --resume also "
+                 "a port that is away when gc-send starts or while it asks the printer (default 180; 0: stop at once)")
       ->type_name("SECONDS")->check(CLI::NonNegativeNumber)->group(link);
   app.add_flag("--delta", o.delta,
                "The printer is a delta (its towers home together, Z with them): a printer reset mid-print is not "

@@ -274,3 +274,36 @@ TEST_CASE("gc-send --resume --delta after a reset: refused with the gc-relayer r
   REQUIRE(log.sessions.size() == 2);
   CHECK(log.sessions[1].empty());  // not a numbered line after the reset
 }
+
+TEST_CASE("gc-send --resume through a link drop: before it starts, while it asks the printer, in the way back",
+          "[gc-send][reset][resume][reconnect]") {
+  auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
+  // Killed inside the way back after a reset (as above), then the link
+  // drops `after` seconds into the resumed session (-1: just before it
+  // starts, the port is away); the drop lasts 0.25 s (5 simulated).
+  int away = 0, while_asking = 0, in_print = 0;
+  for (double after : {-1.0, 0.02, 0.1, 0.2, 0.8}) {
+    INFO("link dropped " << after << " s into the resumed session");
+    std::string dir = gctest::temp_dir();
+    const std::string journal = quote(dir + "/print.journal");
+    const std::string acked = "$(awk '/restore=[1-9]/{r=1} r && /^A /' " + journal + " 2>/dev/null | wc -l)";
+    const std::string drop = after < 0 ? "sleep 0.5; kill -USR2 $vp; sleep 0.05"
+                                       : "sleep 0.5; (sleep " + std::to_string(after) + "; kill -USR2 $vp) &";
+    auto r = killed_when(dir, pieces_file(),
+                         "for i in $(seq 5000); do grep -q 'restore=[1-9]' " + journal + " 2>/dev/null && [ " + acked +
+                             " -ge 2 ] && break; sleep 0.002; done",
+                         drop, "--reconnect 60", "--heat-rate 100 --fault reset@line=2500");
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    if (r.err.find("s for it (--reconnect)") != std::string::npos) ++away;
+    if (r.err.find("the port is back after") != std::string::npos &&
+        r.err.find("asking the printer again") != std::string::npos)
+      ++while_asking;
+    if (r.err.find("going on from N") != std::string::npos) ++in_print;
+    CHECK(r.err.find("that way back again") != std::string::npos);
+    CHECK(require_resumed(gctest::read_file(dir + "/executed.log"), expected).resets == 1);
+  }
+  CHECK(away == 1);
+  CHECK(while_asking >= 2);
+  CHECK(in_print >= 1);
+}

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -94,6 +95,18 @@ int open_serial_port(const std::string& path, const PortOptions& options) {
     }
   }
   return fd;
+}
+
+int wait_for_port(const std::string& path, const PortOptions& options, double seconds) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  for (;;) {
+    try {
+      return open_serial_port(path, options);
+    } catch (const std::runtime_error&) {
+      if (std::chrono::steady_clock::now() >= end) throw;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
 }
 
 std::vector<PortInfo> list_serial_ports() {

@@ -34,7 +34,7 @@ class Exchange {
         wait(POLLOUT, 0.1);
         continue;
       }
-      if (n < 0) throw std::runtime_error(fmt::format("cannot write to the printer: {}", std::strerror(errno)));
+      if (n < 0) throw PortLost(fmt::format("cannot write to the printer: {}", std::strerror(errno)));
       text.remove_prefix(static_cast<std::size_t>(n));
     }
   }
@@ -60,7 +60,9 @@ class Exchange {
       char buf[4096];
       ssize_t n = ::read(fd_, buf, sizeof buf);
       if (n < 0 && (errno == EINTR || errno == EAGAIN)) continue;
-      if (n <= 0) throw std::runtime_error("the printer's port closed while gc-send asked where it is");
+      if (n <= 0)
+        throw PortLost(fmt::format("the printer's port closed while gc-send asked where it is ({})",
+                                   n == 0 ? "end of file" : std::strerror(errno)));
       pending_.append(buf, static_cast<std::size_t>(n));
       last = EventLoop::now();
     }

@@ -114,6 +114,17 @@ bool is_virtual_port(const std::string& port) {
 
 namespace {
 
+int open_or_wait(const SendJob& job, double wait, Diagnostics& diag) {
+  const PortOptions options{job.baud, job.reset};
+  try {
+    return open_serial_port(job.port, options);
+  } catch (const std::runtime_error& e) {
+    if (wait <= 0) throw;
+    diag.warn(0, fmt::format("{}; waiting up to {:g} s for it (--reconnect)", e.what(), wait));
+  }
+  return wait_for_port(job.port, options, wait);
+}
+
 // The port: a real device or pty, or a socketpair to an in-process model.
 struct PortSetup {
   int fd = -1;
@@ -125,9 +136,11 @@ struct PortSetup {
   double scale = 1;
   bool pty = false;
 
-  PortSetup(const SendJob& job, EventLoop& loop) : baud(job.baud) {
+  // `wait`: seconds a port that is away is waited for (a resume started
+  // while the USB link is still down).
+  PortSetup(const SendJob& job, EventLoop& loop, double wait, Diagnostics& diag) : baud(job.baud) {
     if (!is_virtual_port(job.port)) {
-      fd = open_serial_port(job.port, PortOptions{job.baud, job.reset});
+      fd = open_or_wait(job, wait, diag);
       pty = is_pseudo_terminal(fd);
       return;
     }
@@ -154,6 +167,27 @@ struct PortSetup {
   PortSetup(const PortSetup&) = delete;
   PortSetup& operator=(const PortSetup&) = delete;
 };
+
+// A resume asks the printer what it did (printer_probe.hpp); a port that
+// goes away meanwhile is waited for (--reconnect) and the printer asked
+// again: it answers for what it did while the link was down.
+ProbeResult probe_through_drops(PortSetup& port, const SendJob& job, double timeout,
+                                const std::function<void(std::string_view)>& trace, Diagnostics& diag) {
+  for (;;) {
+    try {
+      return probe_printer(port.fd, timeout, trace);
+    } catch (const PortLost& e) {
+      if (port.printer || job.reconnect <= 0) throw;
+      diag.warn(0, fmt::format("{}; waiting up to {:g} s for {} to come back (--reconnect)", e.what(), job.reconnect,
+                               job.port));
+      ::close(port.fd);
+      port.fd = -1;
+      const double lost = EventLoop::now();
+      port.fd = wait_for_port(job.port, PortOptions{job.baud, false}, job.reconnect);
+      diag.warn(0, fmt::format("the port is back after {:.2f} s; asking the printer again", EventLoop::now() - lost));
+    }
+  }
+}
 
 // The virtual printer's motion, for the pause's latency figures.
 void set_motion_probe(SendSession& session, PortSetup& port) {
@@ -308,7 +342,7 @@ int run_send_job(SendJob& job, Diagnostics& diag) {
     journal = std::make_unique<SendJournal>(JournalOptions{.path = job.journal_path}, identify_input(name, input.fd()),
                                             job.port);
   }
-  PortSetup port(job, loop);
+  PortSetup port(job, loop, resume ? job.reconnect : 0, diag);
   SenderConfig config = job.sender;
   // A pseudo-terminal has no baud rate: its bytes cross at once, unless the
   // simulated printer behind it reports its own (M115 BAUD, TIME_SCALE).
@@ -335,13 +369,16 @@ int run_send_job(SendJob& job, Diagnostics& diag) {
     }
   });
   sender.set_trace(trace || log != nullptr);
+  // (The session is given the port the printer answered on.)
+  std::optional<ProbeResult> probe;
+  if (resume) probe = probe_through_drops(port, job, std::max(30.0, config.timeout), trace_line, diag);
   SendSession session(loop, sender, input.fd(), port.fd, diag,
                       job.layer_marker.empty() ? LayerMarkers() : LayerMarkers(job.layer_marker));
   std::optional<ResumeStart> start;
   if (resume) {
     ResumeLimits limits;
     limits.can_home_xy_alone = config.home_xy_alone;
-    start = begin_resume(*resume, port.fd, session, std::max(30.0, config.timeout), limits, trace_line);
+    start = begin_resume(*resume, *probe, session, limits);
     if (!start->complete.empty()) return already_complete(job, *start, identify_input(name, input.fd()));
     journal = std::make_unique<SendJournal>(JournalOptions{.path = job.journal_path}, identify_input(name, input.fd()),
                                             job.port);

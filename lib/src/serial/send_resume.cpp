@@ -131,9 +131,8 @@ void check_resume_input(const ResumeSource& source, const std::string& name, int
   if (!problem.empty()) throw ResumeError(fmt::format("cannot resume: {}", problem));
 }
 
-ResumeStart begin_resume(const ResumeSource& source, int port_fd, SendSession& session, double timeout,
-                         const ResumeLimits& limits, const std::function<void(std::string_view)>& trace) {
-  ProbeResult probe = probe_printer(port_fd, timeout, trace);
+ResumeStart begin_resume(const ResumeSource& source, const ProbeResult& probe, SendSession& session,
+                         const ResumeLimits& limits) {
   if (!probe.problem.empty()) throw ResumeError(fmt::format("cannot resume: {}", probe.problem));
   ResumeStart r;
   r.greeted = probe.greeted;

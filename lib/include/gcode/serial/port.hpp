@@ -21,6 +21,11 @@ struct PortOptions {
 // port is named by its pid).
 int open_serial_port(const std::string& path, const PortOptions& options);
 
+// open_serial_port, tried again every tenth of a second for up to `seconds`
+// while the port is away (a USB board's node comes back after a drop).
+// Throws the last attempt's error when it did not come back in time.
+int wait_for_port(const std::string& path, const PortOptions& options, double seconds);
+
 // Whether `fd` is a pseudo-terminal (a simulated printer, Klipper's
 // /tmp/printer): its bytes cross at once, whatever baud rate is set.
 bool is_pseudo_terminal(int fd);

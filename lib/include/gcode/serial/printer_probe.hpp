@@ -7,6 +7,7 @@
 // question moves the printer: a refused line is not run, M105 and M114 only
 // report. A blocking exchange on the port before the event loop starts.
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 
@@ -22,8 +23,15 @@ struct ProbeResult {
   std::string problem;        // why the printer cannot be trusted ("" none)
 };
 
+// The port went away during the exchange (a USB drop): asked again once it
+// is back, the printer answers for what it did meanwhile.
+struct PortLost : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 // `timeout`: seconds for each answer (a printer draining a full queue of
-// slow moves answers late). `trace` sees every line both ways.
+// slow moves answers late). `trace` sees every line both ways. Throws
+// PortLost when the port closes or fails.
 ProbeResult probe_printer(int fd, double timeout, const std::function<void(std::string_view)>& trace);
 
 }  // namespace gcode::serial

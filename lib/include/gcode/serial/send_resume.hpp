@@ -14,6 +14,7 @@
 #include <string_view>
 
 #include "gcode/serial/journal.hpp"
+#include "gcode/serial/printer_probe.hpp"
 #include "gcode/serial/resume_plan.hpp"
 
 namespace gcode::serial {
@@ -56,14 +57,14 @@ struct ResumeStart {
   std::string complete;
 };
 
-// Asks the printer on `port_fd`, plans, and skips the printed part of the
-// input in `session` (its hash checked). `timeout`: seconds for each answer.
+// Plans from what the printer said (`probe`, printer_probe.hpp), and skips
+// the printed part of the input in `session` (its hash checked).
 // A printer that reset goes on from the plan's command (ResumePlan): the
 // caller sends the resume sequence first. A print whose closing M400 the
 // printer took, or that was being cancelled, is `complete`: no plan,
 // nothing skipped (a cancel the printer took only part of is refused).
-ResumeStart begin_resume(const ResumeSource& source, int port_fd, SendSession& session, double timeout,
-                         const ResumeLimits& limits, const std::function<void(std::string_view)>& trace);
+ResumeStart begin_resume(const ResumeSource& source, const ProbeResult& probe, SendSession& session,
+                         const ResumeLimits& limits);
 
 // The one command that resumes a print that stopped with the part on the bed.
 std::string resume_command(const std::string& journal, const std::string& input, const std::string& port);
