@@ -54,9 +54,9 @@ void Sender::link_back(double now) {
 void Sender::relocate(long long expected, double now) {
   const long long last = expected - 1;
   if (last == 0 && highest_sent_ > 0) {
-    fail(fmt::format("the printer restarted while its port was away (its line numbers are back at 0): what it had "
-                     "queued is lost; last acknowledged: {}",
-                     describe(last_acked_)));
+    // It restarted while the port was away, its greeting lost with the
+    // link: a reset like any other.
+    printer_reset("its line numbers were back at 0 when its port came back", now);
     return;
   }
   if (last < last_acked_.number || last > highest_sent_) {

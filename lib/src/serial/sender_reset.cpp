@@ -65,7 +65,9 @@ long long Sender::surely_ran() const {
   long long n = last_acked_.number;
   while (n > 0) {
     if (n == base_number_) return n;
-    if (!in_history(n)) return -1;
+    // Acknowledged before this session's first line (a resume's handshake):
+    // nothing past the base is known to have run.
+    if (!in_history(n)) return n < first_held_ && base_number_ > 0 ? base_number_ : -1;
     const Slot& s = slot(n);
     // A line of an earlier resume: that resume starts again.
     if (s.restore != 0) return in_history(s.restore) || s.restore == base_number_ ? s.restore : -1;
