@@ -37,8 +37,8 @@ struct LayerTracker::View {
 std::size_t LayerTracker::Held::add(const RawLine& raw) {
   std::size_t pos = arena.size();
   // One append where the ending follows the text, as read (half the cost).
-  if (raw.text.data() + raw.text.size() == raw.ending.data()) {
-    arena.append(raw.text.data(), raw.size());
+  if (const std::string_view whole = raw.whole(); !whole.empty()) {
+    arena.append(whole);
   } else {
     arena.append(raw.text);
     arena.append(raw.ending);

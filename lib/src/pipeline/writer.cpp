@@ -27,8 +27,8 @@ void GcodeWriter::line(const TrackedLine& t, Emitter&) {
   }
   // An input line's ending follows its text in the buffer it was read into:
   // one copy for both (a call and a branch fewer a line: callgrind).
-  if (t.raw.text.data() + t.raw.text.size() == end.data()) {
-    out_.write(std::string_view(t.raw.text.data(), t.raw.text.size() + end.size()));
+  if (const std::string_view whole = t.raw.whole(); !whole.empty()) {
+    out_.write(whole);
   } else {
     out_.write(t.raw.text);
     out_.write(end);

@@ -24,6 +24,11 @@ struct RawLine {
   std::uint64_t offset = 0; // byte offset of the first byte of the line
 
   std::size_t size() const { return text.size() + ending.size(); }
+  // The text and its ending as one view, when the ending follows the text
+  // in memory (as read; "" otherwise): one copy for both.
+  std::string_view whole() const {
+    return text.data() + text.size() == ending.data() ? std::string_view(text.data(), size()) : std::string_view();
+  }
 };
 
 class LineSplitter {
