@@ -163,7 +163,7 @@ TEST_CASE("the single-pass parser agrees with the reference on odd lines", "[lin
                        "N121  G\x8c",
                        // Digit runs of 7 to 19, at the line's end, before bytes next to the digits or above 0x7f.
                        "G1 X1234567", "G1 X12345678", "G1 X123456789 Y1", "G1 X.12345678", "G1 X1234567.12345678",
-                       "G1 X123456789.123456789", "G1 X1234567890.12345678", "G1 X12\xb0 Y1", "G1 X1\x8a" "5 Y1",
+                       "G1 X123456789.123456789", "G1 X1234567890.12345678", "G1 X12\xb0 Y1", "G1 X1\x8a\x35 Y1",
                        "G1 X12/4", "G1 X12:4", "G1 Y9 X1234567890123456789", "G1 E.0214799"};
   for (const char* text : odd) {
     INFO("'" << text << "'");
