@@ -27,7 +27,8 @@ void add_send_options(Tool& tool, SendOptions& o) {
       ->type_name("BYTES")->group(link);
   app.add_flag("--no-pace", o.no_pace,
                "Let the flow control alone decide what is in flight (default: no more moves in flight than keep the "
-               "printer busy, so a pause stops after what its planner holds)")->group(link);
+               "printer busy, so a pause stops after what its planner holds; on Marlin without ADVANCED_OK a bare G1, "
+               "which moves nothing, asks when the planner has room)")->group(link);
   app.add_option("--timeout", o.timeout,
                  "Seconds without any sign of life before asking with M105 (default 10; longer for heating and "
                  "homing); an answer overdue by the printer's own pace is asked for at once")

@@ -515,27 +515,57 @@ TEST_CASE("gc-send: a cancel on a file without a bed retracts and lifts before t
   CHECK(end.at(gcode::kZ).to_double() >= highest_printed + 2 - 1e-9);
 }
 
-TEST_CASE("gc-send pacing: a printer twice as fast that reports ADVANCED_OK is followed, against --no-pace", "[gc-send][pace]") {
-  // Issue 23 §1: the open-loop pacer starved such a printer about half the
-  // print. Measured in one test from the virtual printer's own report, both
-  // runs on the same 1500 moves of 0.2 mm from layer 1 on. (What is left:
-  // the learning at the start; the issue's goal is unpaced + 1 %.)
+namespace {
+
+// Issue 23 §1: pacing against a printer twice as fast as gc-send's model,
+// measured from the virtual printer's own report against --no-pace in the
+// same test, both runs on the same 1500 moves of 0.2 mm from layer 1 on
+// (the open-loop pacer starved it about half the print): planner starved
+// (% of the print) and gc-send's time, paced and not.
+struct PaceRuns {
+  double paced = 0, unpaced = 0, paced_time = 0, unpaced_time = 0;
+};
+
+PaceRuns pace_against_no_pace(const std::string& printer, const std::string& options) {
   std::string file = gctest::temp_dir() + "/fast.gcode";
   auto made = gctest::run(quote(tool_path("gc-subdivide")) + " --max 0.2 " +
                           quote(gctest::fixture_path("prusa_cube_0.2_mk3s_rel_zhop.gcode")) +
                           " | awk 'BEGIN { print \"G28\"; print \"G90\"; print \"M83\" } "
                           "/^;LAYER_CHANGE/ { on = 1 } on && k++ < 1500' > " + quote(file));
   REQUIRE(made.status == 0);
-  auto starved = [&](const std::string& args) {
-    auto r = gctest::run(quote(tool_path("gc-send")) + " --flow advanced-ok " + args +
-                         " --port virtual:time-scale=5,heat-rate=100000,advanced-ok,speed-factor=2 " + quote(file));
+  PaceRuns runs;
+  for (bool paced : {true, false}) {
+    auto r = gctest::run(quote(tool_path("gc-send")) + " " + options + (paced ? "" : " --no-pace") +
+                         " --port virtual:time-scale=5,heat-rate=100000,speed-factor=2" + printer + " " + quote(file));
     INFO(r.err);
     REQUIRE(r.status == 0);
-    return number_after(r.err, "planner starved ");
-  };
-  double paced = starved("");
-  double unpaced = starved("--no-pace");
-  INFO("planner starved " << paced << " % paced, " << unpaced << " % with --no-pace");
-  CHECK(paced <= unpaced + 8);
-  CHECK(paced < 20);
+    (paced ? runs.paced : runs.unpaced) = number_after(r.err, "planner starved ");
+    const std::size_t summary = r.err.find("summary: lines ");
+    REQUIRE(summary != std::string::npos);
+    (paced ? runs.paced_time : runs.unpaced_time) = number_after(r.err.substr(summary), ", time ");
+  }
+  return runs;
+}
+
+}  // namespace
+
+TEST_CASE("gc-send pacing: a printer twice as fast that reports ADVANCED_OK is followed, against --no-pace", "[gc-send][pace]") {
+  // 9.4 % against 4.5 % starved when written. (What is left: the learning
+  // at the start; the issue's goal is unpaced + 1 %.)
+  PaceRuns r = pace_against_no_pace(",advanced-ok", "--flow advanced-ok");
+  INFO("planner starved " << r.paced << " % paced, " << r.unpaced << " % with --no-pace");
+  CHECK(r.paced <= r.unpaced + 8);
+  CHECK(r.paced < 20);
+}
+
+TEST_CASE("gc-send pacing: a printer twice as fast without ADVANCED_OK is followed with moves of no length", "[gc-send][pace]") {
+  // Marlin's default: the oks say nothing of a planner that is not full; a
+  // bare G1 waits for a free block (Planner::_buffer_steps) and is dropped,
+  // and its answer says when one was free. (The open-loop pacer starved
+  // this printer 49.8 % of the print against 2.3 % unpaced.)
+  PaceRuns r = pace_against_no_pace("", "");
+  INFO("planner starved " << r.paced << " % paced, " << r.unpaced << " % with --no-pace; " << r.paced_time
+                          << " s against " << r.unpaced_time << " s");
+  CHECK(r.paced <= r.unpaced + 1);
+  CHECK(r.paced_time <= 1.05 * r.unpaced_time);
 }

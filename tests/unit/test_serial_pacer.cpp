@@ -32,16 +32,43 @@ struct Scripted {
   bool advanced_ok = false;
   double latency = 0;        // how late the host reads an answer, at most
   unsigned seed = 1;
+  // The host asks with a move of no length whenever the pacer wants one;
+  // the printer holds it until a block is free (Marlin) or answers it at
+  // once (a delta).
+  bool probes = false;
+  bool holds_probes = true;
+  int probes_sent = 0;
+
+  double late() {
+    seed = seed * 1103515245u + 12345u;
+    return latency * static_cast<double>((seed >> 16) % 1000) / 1000.0;
+  }
+  void drain() {
+    while (!ends.empty() && ends.front() <= now) ends.pop_front();
+  }
+  void probe() {
+    ++probes_sent;
+    drain();
+    double answered = now;
+    if (holds_probes && static_cast<int>(ends.size()) >= blocks) answered = ends.front();
+    const double arrival = now;
+    now = answered + late();
+    pacer.probe_answered(now, arrival, blocks);
+  }
 
   // One move of `seconds` nominal: sent as soon as the pacer lets it,
   // answered when it has a block.
   void move(double seconds) {
     while (pacer.blocked(now, 0, number + 1, blocks)) {
+      if (probes && pacer.probe_wanted(blocks)) {
+        probe();
+        continue;
+      }
       REQUIRE(pacer.wake() < Pacer::kNever);
       now = std::max(now, pacer.wake());
     }
     ++number;
-    while (!ends.empty() && ends.front() <= now) ends.pop_front();
+    drain();
     double entered = now;
     most_ahead = std::max(most_ahead, ends.size() + 1);
     if (static_cast<int>(ends.size()) >= blocks) {
@@ -57,16 +84,24 @@ struct Scripted {
     a.nominal = seconds;
     // The host reads the answer up to `latency` seconds late (a fixed,
     // uneven sequence).
-    seed = seed * 1103515245u + 12345u;
-    const double late = latency * static_cast<double>((seed >> 16) % 1000) / 1000.0;
-    a.now = entered + late;
+    const double late_by = late();
+    a.now = entered + late_by;
     a.arrival = now;
     a.planner_free = advanced_ok ? blocks - static_cast<int>(ends.size()) : -1;
-    now = entered + late;
+    now = entered + late_by;
     pacer.answered(a, blocks, 1);
   }
   double last_end = 0;
 };
+
+// Marlin's 16 blocks at `factor` x, the host asking with moves of no length.
+Scripted probing(double factor) {
+  Scripted s;
+  s.blocks = 16;
+  s.factor = factor;
+  s.probes = true;
+  return s;
+}
 
 }  // namespace
 
@@ -174,4 +209,57 @@ TEST_CASE("pacer: answers the host reads late never make a printer at the file's
     CHECK(s.pacer.speed_factor() <= 1.0 + 1e-9);
     CHECK(s.most_ahead <= static_cast<std::size_t>(s.blocks));
   }
+}
+
+TEST_CASE("pacer: without ADVANCED_OK moves of no length find a faster printer's pace without overfilling it", "[serial][pacer]") {
+  // Marlin holds a bare G1 until a block is free and then drops it: its
+  // answer says the planner had room, or, late, that a block just ended.
+  for (double factor : {1.25, 2.0, 10.0}) {
+    INFO("printer at " << factor << " x");
+    Scripted s = probing(factor);
+    for (int i = 0; i < 200; ++i) s.move(1);
+    const double before = s.starved;
+    const double t0 = s.now;
+    for (int i = 0; i < 500; ++i) s.move(1);
+    INFO("starved " << s.starved - before << " s of " << s.now - t0 << ", " << s.probes_sent << " probes");
+    CHECK(s.starved - before < 0.01 * (s.now - t0));
+    CHECK(s.most_ahead <= static_cast<std::size_t>(s.blocks));
+    CHECK(s.pacer.speed_factor() <= factor + 1e-9);
+  }
+}
+
+TEST_CASE("pacer: moves of no length at the file's pace never put a move more ahead of the nozzle", "[serial][pacer]") {
+  for (double latency : {0.0, 3.0}) {
+    INFO("host latency up to " << latency << " blocks");
+    Scripted s = probing(1);
+    s.latency = latency;
+    for (int i = 0; i < 1000; ++i) s.move(1);
+    CHECK(s.probes_sent > 0);
+    CHECK(s.most_ahead <= static_cast<std::size_t>(s.blocks));
+    CHECK(s.pacer.speed_factor() <= 1.0 + 1e-9);
+  }
+}
+
+TEST_CASE("pacer: a printer that answers moves of no length at once is found out by the one move released on its word", "[serial][pacer]") {
+  // A delta (Marlin returns before the planner for a move of no length):
+  // its answers always say there is room. The one move released on the
+  // first of them waits for a block; then no more probes go.
+  Scripted s = probing(1);
+  s.holds_probes = false;
+  for (int i = 0; i < 100; ++i) s.move(1);
+  const int sent = s.probes_sent;
+  CHECK(sent >= 1);
+  CHECK(s.most_ahead <= static_cast<std::size_t>(s.blocks) + 1);
+  s.most_ahead = 0;
+  for (int i = 0; i < 500; ++i) s.move(1);
+  CHECK(s.probes_sent == sent);
+  CHECK(s.most_ahead <= static_cast<std::size_t>(s.blocks));
+  CHECK(s.pacer.speed_factor() <= 1.0 + 1e-9);
+}
+
+TEST_CASE("pacer: with ADVANCED_OK no move of no length is wanted", "[serial][pacer]") {
+  Scripted s = probing(2);
+  s.advanced_ok = true;
+  for (int i = 0; i < 200; ++i) s.move(1);
+  CHECK(s.probes_sent == 0);
 }

@@ -42,6 +42,7 @@ constexpr FirmwareFlavor marlin(std::string_view name, std::string_view reports_
   f.busy_keepalive = true;
   f.ok_when_queued = false;
   f.reports_own_pause = false;
+  f.empty_move_waits = true;
   return f;
 }
 

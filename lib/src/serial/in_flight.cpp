@@ -17,7 +17,7 @@ InFlight::Answer InFlight::answer_to(const Response& r, bool numbered_oks) const
     // theirs (an earlier one's got lost), and a question left behind would
     // wait for an answer already taken.
     auto last = it;
-    while (last + 1 != entries_.end() && (last + 1)->number < 0) ++last;
+    while (last + 1 != entries_.end() && (last + 1)->number == kQuestion) ++last;
     return {Kind::Through, static_cast<std::size_t>(last - entries_.begin()), static_cast<std::size_t>(last - it)};
   }
   if (numbered_oks) {
@@ -67,11 +67,15 @@ std::size_t InFlight::drop_from(long long n) {
 
 std::size_t InFlight::lines() const {
   return static_cast<std::size_t>(
-      std::count_if(entries_.begin(), entries_.end(), [](const Entry& e) { return e.number >= 0; }));
+      std::count_if(entries_.begin(), entries_.end(), [](const Entry& e) { return e.number != kQuestion; }));
 }
 
 bool InFlight::asking() const {
-  return std::any_of(entries_.begin(), entries_.end(), [](const Entry& e) { return e.number < 0; });
+  return std::any_of(entries_.begin(), entries_.end(), [](const Entry& e) { return e.number == kQuestion; });
+}
+
+bool InFlight::probing() const {
+  return std::any_of(entries_.begin(), entries_.end(), [](const Entry& e) { return e.number == kPaceProbe; });
 }
 
 }  // namespace gcode::serial

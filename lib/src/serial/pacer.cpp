@@ -115,6 +115,7 @@ void Pacer::answered(const Answer& a, int planner_blocks, double time_scale) {
   move(answered_) = {entered, a.nominal / (time_scale > 0 ? time_scale : 1), kNever,
                      r.number == a.number ? r.at : kNever};
   const long long freed = answered_ - n;  // the move whose block this one took
+  advanced_ = advanced_ || a.planner_free >= 0;
   if (a.planner_free >= 0 && clean_) {
     // ADVANCED_OK: the planner holds its size less P moves, this one among
     // them; the one before the oldest of them ended by now (within a block).
@@ -126,20 +127,58 @@ void Pacer::answered(const Answer& a, int planner_blocks, double time_scale) {
     // An answer read together with the one before it (no time between
     // them) was late because the host was: a stall, not a wait for a block.
     const bool apart = a.now - last_now_ >= 0.5 * late;
-    observe(answered_ - n, entered, late, clean_ && known && apart);
+    const bool waited = observe(answered_ - n, entered, late, clean_ && known && apart);
+    // It waited for a block, and no probe ever did: the printer answers
+    // them at once, and their word that it had room is worth nothing.
+    if (waited && probes_ > 0 && late_probes_ == 0) probes_unheard_ = true;
   }
+  if (a.number >= probe_move_) probe_move_ = -1;
   chain();
-  floor_ = std::max(shown(freed, a.now), floor_ * kFloorDecay);
-  if (rate_.factor() < floor_) {
-    rate_.at_least(floor_);
-    chain();
-  }
+  floor_ *= kFloorDecay;
+  learn_floor(freed, a.now);
   clean_ = true;
   last_now_ = a.now;
 }
 
+void Pacer::learn_floor(long long freed, double now) {
+  floor_ = std::max(shown(freed, now), floor_);
+  if (rate_.factor() < floor_) {
+    rate_.at_least(floor_);
+    chain();
+  }
+}
+
+bool Pacer::probe_wanted(int planner_blocks) const {
+  // One move released on a probe's word at a time: a printer that answers
+  // probes at once is found out by that move's wait, before another goes.
+  return !advanced_ && !probes_unheard_ && probe_move_ < 0 && !probe_credit_ &&
+         answered_ >= static_cast<long long>(blocks(planner_blocks));
+}
+
+// The probe went after every move answered so far and took no block: its
+// answer came once the oldest of the last n of them had left the planner.
+void Pacer::probe_answered(double now, double arrival, int planner_blocks) {
+  ++probes_;
+  const long long freed = answered_ - static_cast<long long>(blocks(planner_blocks)) + 1;
+  // After a command that waits its lateness is not the planner's.
+  if (!clean_ || arrival == kUnknown || freed < oldest() || freed <= known_) return;
+  base_ = std::min(base_, now - arrival);
+  const double base = base_ < kNever ? base_ : 0;
+  const double late = now - arrival - base;
+  const bool apart = now - last_now_ >= 0.5 * late;
+  const double block = move(freed).seconds / rate_.factor();
+  const bool waited = apart && late > std::max(kGrace * block, 3 * jitter_);
+  if (waited) ++late_probes_;
+  observe(freed, now - std::max(0.0, base), late, apart);
+  probe_credit_ = !waited;
+  chain();
+  learn_floor(freed, now);
+}
+
 bool Pacer::release(long long number, double now) {
   released_[static_cast<std::size_t>(number) % kHistory] = {number, now};
+  if (probe_credit_) probe_move_ = number;
+  probe_credit_ = false;
   return false;
 }
 

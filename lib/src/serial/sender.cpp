@@ -207,7 +207,7 @@ void Sender::send_unnumbered(std::string_view command, bool temperature_query, b
   out_ += '\n';
   if (trace_) log(LogLevel::Trace, 0, fmt::format("-> {}", command));
   if (track) {
-    push_flight(-1, command.size() + 1, temperature_query);
+    push_flight(InFlight::kQuestion, command.size() + 1, temperature_query);
   } else {
     out_total_ += command.size() + 1;
   }
@@ -253,7 +253,10 @@ void Sender::fill(double now) {
     // Our M105s hold bytes of the printer's buffer but no place in its
     // queue for long: it answers them as soon as they are read.
     if (!flow_.may_send(flight_.lines(), flight_.bytes() + reserve, s.wire.size())) break;
-    if (config_.pace && s.move && paced(now)) break;
+    if (config_.pace && s.move && paced(now)) {
+      pace_probe(now, reserve);
+      break;
+    }
     out_ += s.wire;
     if (trace_)
       log(LogLevel::Trace, 0, fmt::format("-> {} @{:.6f}", std::string_view(s.wire).substr(0, s.wire.size() - 1), now));
@@ -292,6 +295,9 @@ void Sender::acknowledge_front(double now, int planner_free) {
   const InFlight::Entry f = flight_.pop_front();
   if (f.number < 0) {
     clock_.answered(0, now);
+    if (f.number == InFlight::kPaceProbe && config_.pace)
+      pacer_.probe_answered(now, f.arrival == InFlight::kNotArrived ? Pacer::kUnknown : f.arrival,
+                            clock_.planner_blocks());
     return;
   }
   const Slot& s = slot(f.number);
@@ -630,6 +636,23 @@ bool Sender::paced(double now) {
   return pacer_.blocked(now, moves, next_send_, clock_.planner_blocks());
 }
 
+// Held back by the pacer: a move of no length asks the printer whether its
+// planner really is full (pacer.hpp), on a firmware that holds it until it
+// has a block free. It holds a place in the printer's queue like a line.
+// It has no number and no checksum: on a link that has garbled a line (a
+// resend asked) none goes, as its answer could be taken for a line's.
+void Sender::pace_probe(double now, std::size_t reserve) {
+  if (!config_.firmware->empty_move_waits || stats_.resend_requests > 0 || stats_.errors > 0 || flight_.probing())
+    return;
+  if (!pacer_.probe_wanted(clock_.planner_blocks())) return;
+  if (!flow_.may_send(flight_.lines(), flight_.bytes() + reserve, kPaceProbe.size() + 1)) return;
+  out_ += kPaceProbe;
+  out_ += '\n';
+  if (trace_) log(LogLevel::Trace, 0, fmt::format("-> {} @{:.6f} (pace probe)", kPaceProbe, now));
+  push_flight(InFlight::kPaceProbe, kPaceProbe.size() + 1, false);
+  ++stats_.pace_probes;
+}
+
 void Sender::planned(const Slot& s, const InFlight::Entry& f, double now, int planner_free) {
   if (!config_.pace) return;
   if (!s.move) {
@@ -649,18 +672,20 @@ double Sender::overdue_at() const {
   if (flight_.empty() || state_ != SenderState::Printing || waiting_for_user()) return kNever;
   // The answer the sender waits for: the oldest line's, or while an M105 of
   // ours is out behind it, the newest one's (it answers for everything
-  // before it). With no line in flight there is nothing to ask about.
+  // before it). With no line in flight there is nothing to ask about. (A
+  // pace probe is a line here: it waits for a block as a move does.)
   std::size_t first = 0;
-  while (first < flight_.size() && flight_[first].number < 0) ++first;
+  while (first < flight_.size() && flight_[first].number == InFlight::kQuestion) ++first;
   if (first == flight_.size()) return kNever;
   std::size_t k = first;
   for (std::size_t i = first; i < flight_.size(); ++i)
-    if (flight_[i].number < 0) k = i;
+    if (flight_[i].number == InFlight::kQuestion) k = i;
   if (flight_[k].arrival == InFlight::kNotArrived) return kNever;
   AnswerClock::Wait wait;
   // (Questions before the first line are left over from before and have no
   // bearing on when it is answered.)
   for (std::size_t j = first; j <= k; ++j) {
+    if (flight_[j].number == InFlight::kPaceProbe) ++wait.moves;
     if (flight_[j].number < 0) continue;
     const Slot& s = slot(flight_[j].number);
     wait.unbounded = wait.unbounded || s.unbounded;
@@ -672,7 +697,7 @@ double Sender::overdue_at() const {
   }
   // Asked already with a long command ahead: it answers when done, and its
   // keepalives or --timeout tell how long that is.
-  if (flight_[k].number < 0 && wait.unbounded) return kNever;
+  if (flight_[k].number == InFlight::kQuestion && wait.unbounded) return kNever;
   // A firmware that says nothing during it (Klipper's G28): nothing to learn
   // by asking before --timeout.
   if (wait.unbounded && !config_.firmware->busy_keepalive) return kNever;

@@ -43,6 +43,7 @@ class KlipperDialect final : public ReplyDialect {
       k.moves_need_homing = true;
       k.shutdown_answers = true;
       k.report_on_ok = true;
+      k.empty_move_waits = false;  // answered at once: its queue is seconds of motion, not blocks
       return k;
     }();
     return b;

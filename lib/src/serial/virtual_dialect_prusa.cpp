@@ -18,6 +18,7 @@ class PrusaDialect final : public ReplyDialect {
       DialectBehaviour p;
       p.own_pause = true;
       p.user_waits = true;
+      p.empty_move_waits = false;  // not checked against Prusa-Firmware's planner: taken as answered at once
       return p;
     }();
     return b;

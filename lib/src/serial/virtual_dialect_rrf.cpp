@@ -18,6 +18,7 @@ class RrfDialect final : public ReplyDialect {
       DialectBehaviour r;
       r.busy_keepalive = false;
       r.moves_need_homing = true;  // M564 H1, the default since 1.21
+      r.empty_move_waits = false;  // not checked against RepRapFirmware: taken as answered at once
       return r;
     }();
     return b;

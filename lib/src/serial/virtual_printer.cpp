@@ -401,9 +401,18 @@ bool VirtualPrinter::process_unknown(const Line& line) {
 }
 
 // G0-G3: a block of the planner once one is free (its ok waits until then).
+// One that moves nothing (a bare G1) waits on Marlin too, then takes none:
+// Planner::_buffer_steps waits in get_next_free_block before
+// _populate_block drops a block of no steps.
 bool VirtualPrinter::process_move(const Move& m, double t) {
   double length = m.length > 0 ? m.length : std::abs(m.filament);
-  if (length <= 0) return true;
+  pending_block_ = length > 0;
+  if (!pending_block_) {
+    if (!dialect_->behaviour().empty_move_waits || !planner_full(t)) return true;
+    wait_ = Wait::PlannerSlot;
+    next_busy_ = t + kKeepalive;
+    return false;
+  }
   double feed = m.feedrate > 0 ? m.feedrate : 1500;
   pending_duration_ = config_.instant_moves ? 0 : length / (feed / 60) / config_.speed_factor;
   pending_length_ = m.length;
@@ -519,7 +528,7 @@ bool VirtualPrinter::still_waiting(double t) {
     case Wait::None: return false;
     case Wait::PlannerSlot:
       if (planner_full(t)) return true;
-      add_block(pending_duration_, t);
+      if (pending_block_) add_block(pending_duration_, t);
       return false;
     case Wait::PlannerEmpty:
       if (!planner_.empty()) return true;

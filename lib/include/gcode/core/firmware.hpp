@@ -64,6 +64,14 @@ struct FirmwareFlavor {
   // had room: Klipper's host answers at once until about 2 s of motion is
   // queued, so the oks say nothing of the planner's blocks.
   bool ok_when_queued = false;
+  // A G1 that moves nothing waits for a free planner block before it is
+  // dropped, so its ok says the planner had a block free then, and none
+  // before if it came late (Marlin's Planner::_buffer_steps: the wait in
+  // get_next_free_block comes before _populate_block drops a block of no
+  // steps). The pacer (serial/pacer.hpp) asks with it. Not on deltas and
+  // UBL's segmented moves (a move of no length returns before the planner):
+  // the pacer only believes its answers once one has come late.
+  bool empty_move_waits = false;
   // Sends "// action:paused" and "// action:resumed" when it pauses and
   // resumes itself (Prusa's M601/M602, its knob): a host holds its lines
   // and its timeouts meanwhile.

@@ -16,8 +16,11 @@ class InFlight {
  public:
   static constexpr double kNotArrived = 1e300;
 
+  static constexpr long long kQuestion = -1;   // an M105 the sender asks with
+  static constexpr long long kPaceProbe = -2;  // a move of no length the pacer asks with (pacer.hpp)
+
   struct Entry {
-    long long number;            // -1: an unnumbered command (M105 asked by the sender)
+    long long number;            // < 0: an unnumbered command of the sender's (kQuestion, kPaceProbe)
     std::uint32_t bytes;
     bool temperature_query;      // M105: answered in order with "ok T:..."
     std::uint64_t end;           // output offset just after its last byte
@@ -66,10 +69,12 @@ class InFlight {
   bool empty() const { return entries_.empty(); }
   std::size_t size() const { return entries_.size(); }
   std::size_t bytes() const { return bytes_; }
-  // Numbered lines among them.
+  // Lines that hold a place in the printer's queue until answered: the
+  // numbered ones and a pace probe (which waits for a planner block).
   std::size_t lines() const;
-  // A question of the sender's is among them.
+  // A question of the sender's (M105) is among them.
   bool asking() const;
+  bool probing() const;
   const Entry& front() const { return entries_.front(); }
   const Entry& operator[](std::size_t i) const { return entries_[i]; }
   auto begin() const { return entries_.begin(); }

@@ -24,10 +24,18 @@
 // speed a factor learnt too high held more moves in flight than the planner
 // takes, and `pause now` stopped 3.5 mm on instead of 3.2. That floor is
 // close to the printer's pace only when the planner was full, which
-// ADVANCED_OK's P shows at every answer; without it the pacer does not
-// overfill the planner to find out (a probe: one move more than fits, which
-// at 1x is a piece more ahead of the nozzle at a pause), so against such a
-// printer it stays near the file's pace.
+// ADVANCED_OK's P shows at every answer. Without it the pacer asks with a
+// move of no length (a bare G1: no motion, no state), sent while the model
+// says the planner is full (probe_wanted): Marlin waits for a free block
+// before it drops such a move (FirmwareFlavor::empty_move_waits), so its ok
+// says the oldest block the model holds had ended by then, and when it came
+// late, that it ended then (a sighting). Either frees a block of the model
+// without overfilling the planner (one move is released for it, and only
+// once the printer showed room), so the moves go out at the printer's pace
+// and the floor follows it. A printer that answers it at once (a delta:
+// Marlin returns before the planner) would seem always to have room: its
+// answers count only once one has come late, and a move that waited for a
+// block before any probe did stops the probes.
 #include <algorithm>
 #include <array>
 #include <cstddef>
@@ -65,6 +73,13 @@ class Pacer {
   // "busy:" or a heating report: the printer is held.
   void interrupted();
 
+  // A move of no length now, with the moves in flight? (Only without
+  // ADVANCED_OK, once the planner was filled, and while its answers may
+  // still be believed.)
+  bool probe_wanted(int planner_blocks) const;
+  // Its answer: `now`, and when its last byte reached the printer.
+  void probe_answered(double now, double arrival, int planner_blocks);
+
   // When a blocked move may go (kNever: with an answer).
   double wake() const { return wake_; }
   void clear_wake() { wake_ = kNever; }
@@ -95,6 +110,7 @@ class Pacer {
   void sight(long long index, double t);
   double end_with(long long from, double start, long long to, double factor) const;
   void chain();
+  void learn_floor(long long freed, double now);
   bool release(long long number, double now);
   double shown(long long freed, double now) const;
 
@@ -111,6 +127,12 @@ class Pacer {
   double last_now_ = -kNever;   // when the last move was answered
   std::array<Released, kHistory> released_{};  // by line number
   double floor_ = PaceRate::kMin;  // the speed the printer has shown lately
+  bool advanced_ = false;        // ADVANCED_OK's P seen: no probes
+  long long probes_ = 0;        // probe answers,
+  long long late_probes_ = 0;   // those that waited for a block
+  bool probes_unheard_ = false; // a move waited for a block while no probe had: probes are answered at once
+  bool probe_credit_ = false;   // a probe found room: the next move released is its
+  long long probe_move_ = -1;   // that move, until answered
   double wake_ = kNever;
   PaceRate rate_;
 };

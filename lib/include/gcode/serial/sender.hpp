@@ -88,6 +88,7 @@ struct SenderStats {
   std::uint64_t errors = 0;              // Error: lines
   std::uint64_t ignored_resends = 0;     // requests for lines never sent
   std::uint64_t probes = 0;              // M105 sent because an answer was overdue
+  std::uint64_t pace_probes = 0;         // moves of no length the pacer asked with (pacer.hpp)
   std::uint64_t timeouts = 0;            // silent rounds of --timeout
   std::uint64_t busy = 0;
   std::uint64_t unknown = 0;
@@ -256,6 +257,7 @@ class Sender : private TimeSink {
   static constexpr double kQuietStart = 0.05;      // quiet link after M115 before the first line
   static constexpr double kNever = 1e300;
   static constexpr std::string_view kProbe = "M105";  // asks for an answer that proves progress
+  static constexpr std::string_view kPaceProbe = "G1";  // moves nothing: asks whether the planner is full
 
     // Down: no port; Probing: the mis-numbered line is out; Locating: the
   // printer named its last line, M114 goes out after the refusal's ok;
@@ -321,6 +323,7 @@ class Sender : private TimeSink {
   void detect_flavour();
   bool waiting_lines_fit(std::size_t max_line) const;
   bool paced(double now);
+  void pace_probe(double now, std::size_t reserve);
   void planned(const Slot& s, const InFlight::Entry& f, double now, int planner_free);
   void log(LogLevel level, std::uint64_t input_line, std::string_view message) const;
   void relocate(long long expected, double now);

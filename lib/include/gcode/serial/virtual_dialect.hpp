@@ -46,6 +46,10 @@ struct DialectBehaviour {
   // host process reads the pseudo-terminal into a list of its own
   // (Klipper). false: Marlin's RX buffer and BUFSIZE queue.
   bool reads_everything = false;
+  // A move of no length (a bare G1) waits for a free planner block before
+  // it is dropped, so its ok comes when a block ends (Marlin's
+  // _buffer_steps); false: answered at once.
+  bool empty_move_waits = true;
   bool moves_need_homing = false;   // a move before G28 is refused, with its ok (Klipper, RepRapFirmware)
   // Halted, it still answers: every command refused with its ok until
   // FIRMWARE_RESTART (Klipper). false: it says nothing more (Marlin's kill()).

@@ -216,6 +216,7 @@ class VirtualPrinter {
   std::deque<double> lengths_;  // their path lengths
   std::deque<long long> block_numbers_;  // their commands' line numbers
   double pending_length_ = 0;   // of a move waiting for a planner block
+  bool pending_block_ = true;   // the move waiting takes a block (one that moves nothing takes none)
   double done_length_ = 0;      // path of the blocks finished
   double queued_length_ = 0;    // path of every block added
   Watch watch_;
