@@ -10,9 +10,12 @@
 // with the gc-relayer recipe, nothing more sent.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <random>
 #include <string>
 
+#include "gcode/core/line.hpp"
+#include "gcode/core/machine_state.hpp"
 #include "pty_run.hpp"
 #include "reset_check.hpp"
 #include "test_support.hpp"
@@ -244,6 +247,79 @@ TEST_CASE("gc-send --resume of a print killed while paused goes back into the pa
     CHECK(f.resets == (reset ? 1 : 0));
     CHECK(f.redone_moves == 0);  // parked: every move before the pause had run
   }
+}
+
+namespace {
+
+// Every input command in the printer's log (one session: it kept running)
+// stands where the input alone takes the machine, X, Y, Z and E: lines of
+// gc-send's own between them (a pause and its return) moved nothing for
+// good, not even the filament.
+void require_input_positions(const std::string& log_text, const std::vector<gctest::SentCommand>& expected) {
+  gctest::ResetLog log = gctest::read_reset_log(log_text);
+  REQUIRE(log.sessions.size() == 1);
+  gcode::MachineState s;
+  std::size_t k = 0;
+  int checked = 0;
+  for (const gctest::RanCommand& c : log.sessions[0]) {
+    if (k == expected.size() || c.text != expected[k].text) continue;  // gc-send's own
+    s.apply(gcode::Line::parse(expected[k++].text));
+    INFO("input command " << k << ": " << c.text);
+    const double at[] = {c.x, c.y, c.z, c.e};
+    for (int a : {gcode::kX, gcode::kY, gcode::kZ, gcode::kE}) {
+      if (!s.known[static_cast<std::size_t>(a)]) continue;
+      CHECK(std::abs(s.position[a] - at[a]) < 1e-4);
+      ++checked;
+    }
+  }
+  CHECK(k == expected.size());
+  CHECK(checked > 1000);
+}
+
+}  // namespace
+
+TEST_CASE("gc-send --resume of a print killed inside its pause block: the rest of the block, parked, an exact return",
+          "[gc-send][reset][resume][pause]") {
+  auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
+  // A long block (park, M400, messages, a beep) that goes out a little at a
+  // time: a 40-byte window, a printer of one planner block and one queue
+  // entry. gc-send is killed once `after` acknowledgements follow the
+  // block's first record in the journal.
+  int inside = 0;
+  for (int after : {0, 2, 3, 4, 5}) {
+    INFO("killed " << after << " acknowledgements into the pause block");
+    std::string dir = gctest::temp_dir();
+    std::string status = dir + "/status.json", fifo = dir + "/control", port = dir + "/printer",
+                journal = dir + "/print.journal";
+    std::string wait_paused = "for i in $(seq 1000); do grep -q '\"paused\"' " + quote(status) +
+                              " 2>/dev/null && break; kill -0 $gs || break; sleep 0.01; done\n";
+    std::string send = quote(tool_path("gc-send")) + " --port " + quote(port) + " --journal " + quote(journal) +
+                       " --park 20,180 --wait-moves --beep --host-message waiting --rx-buffer 40 --rush 1" +
+                       " --status-file " + quote(status) + " --control " + quote(fifo) + " ";
+    const std::string acked = "$(awk '/paused=1/{r=1} r && /^A /' " + quote(journal) + " | wc -l)";
+    std::string script =
+        quote(tool_path("gc-virtual-printer")) + " -q --time-scale 20 --heat-rate 1000 --planner 1 --queue 1 --link " +
+        quote(port) + " --log " + quote(dir + "/executed.log") + " & vp=$!\n" +
+        "for i in $(seq 500); do [ -e " + quote(port) + " ] && break; sleep 0.01; done\n" + send + " -q " +
+        quote(pieces_file()) + " 2>/dev/null & gs=$!\nsleep 1; echo pause now > " + quote(fifo) + "\n" +
+        "for i in $(seq 3000); do grep -q paused=1 " + quote(journal) + " 2>/dev/null && [ " + acked + " -ge " +
+        std::to_string(after) + " ] && break; sleep 0.002; done\n" +
+        "kill -9 $gs; wait $gs 2>/dev/null; rm -f " + quote(status) + "\nsleep 0.3\n" + send + " --resume " +
+        quote(journal) + " " + quote(pieces_file()) + " & gs=$!\n" + wait_paused +
+        "kill -0 $gs && timeout 10 sh -c 'echo resume > " + quote(fifo) + "'\n" +
+        "wait $gs; s=$?; kill $vp; wait $vp; exit $s";
+    auto r = run(script);
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    if (r.err.find("stopped inside the pause block: its ") != std::string::npos) ++inside;
+    CHECK((r.err.find("the print was paused after input line ") != std::string::npos ||
+           r.err.find("took none of the pause block") != std::string::npos));
+    const std::string ran = gctest::read_file(dir + "/executed.log");
+    CHECK(require_resumed(ran, expected, 20, true).resets == 0);
+    require_input_positions(ran, expected);
+    CHECK(ran.find("G1 X20 Y180") != std::string::npos);  // it parked
+  }
+  CHECK(inside >= 2);
 }
 
 TEST_CASE("gc-send: printer resets at seeded random moments: each print comes back and finishes",

@@ -311,12 +311,20 @@ void back_into_control(PrintControl& control, const ResumeStart& start, bool qui
   double speed = 1;
   if (!parse_number(start.point.get("speed", "1"), speed)) speed = 1;
   control.restore_speed(speed);
-  if (!start.paused) return;
-  control.resume_into_pause(start.paused->at, start.plan.state, start.paused->track.retracted,
-                            start.paused->track.top_z);
-  if (!quiet)
-    fmt::print(stderr, "gc-send: the print was paused after input line {}: parked, waiting for resume\n",
+  if (start.pause_not_begun && !quiet)
+    fmt::print(stderr, "gc-send: the printer took none of the pause block gc-send was sending when it stopped: "
+                       "printing on after input line {} (pause again if wanted)\n",
                start.plan.input_line);
+  if (!start.paused) return;
+  std::size_t rest = control.resume_into_pause(start.paused->at, start.plan.state, start.paused->track.retracted,
+                                               start.paused->track.top_z, start.paused->taken);
+  if (quiet) return;
+  if (rest > 0)
+    fmt::print(stderr, "gc-send: gc-send stopped inside the pause block: its {} lines the printer had not taken go "
+                       "out now\n",
+               rest);
+  fmt::print(stderr, "gc-send: the print was paused after input line {}: parked, waiting for resume\n",
+             start.plan.input_line);
 }
 
 }  // namespace

@@ -25,9 +25,11 @@ std::string shell_word(const std::string& s) {
   return out + "'";
 }
 
-// The print stood paused (its pause block had gone out): the printer is
-// taken to where the block left it, and the print waits for `resume`
-// there. The stop is the newest command of the input before the block.
+// The print stood paused (its pause block had gone out, or some of it): the
+// printer is taken to where the block left it, and the print waits for
+// `resume` there (the control sends what of the block had not run). The
+// stop is the newest command of the input before the block. A printer that
+// kept running and took none of the block goes on with the print.
 void into_pause(const JournalContents& journal, ResumeStart& r) {
   const std::vector<JournalEntry>& entries = journal.entries;
   std::size_t stop = entries.size();
@@ -35,11 +37,14 @@ void into_pause(const JournalContents& journal, ResumeStart& r) {
   if (stop == 0) throw ResumeError("cannot resume: the journal holds the pause block but not where the print stopped");
   ResumePlan& plan = r.plan;
   std::string problem;
-  if (plan.condition == PrinterCondition::KeptRunning && plan.entry + 1 != entries.size())
-    throw ResumeError(fmt::format("cannot resume: gc-send stopped while the pause block was going out (the printer "
-                                  "took line {} of it, the journal ends at line {}); the head is not parked",
-                                  r.last, entries.back().n));
+  if (plan.condition == PrinterCondition::KeptRunning && plan.entry < stop) {
+    r.pause_not_begun = true;
+    return;
+  }
   ResumeStart::Paused paused;
+  // Kept running: the lines of the block the printer took; a reset: those
+  // the journal holds (the resume sequence takes the head where they left it).
+  paused.taken = (plan.condition == PrinterCondition::KeptRunning ? plan.entry + 1 : entries.size()) - stop;
   if (!read_machine_fields(entries[stop - 1].point, paused.at, problem))
     throw ResumeError(fmt::format("cannot resume: the journal's record of where the print paused is incomplete: {}",
                                   problem));

@@ -30,6 +30,7 @@
 //
 // The printer's own //action:pause (its pause button with host actions) is a
 // `pause`, //action:resume a `resume`, //action:cancel a `cancel`.
+#include <cstddef>
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -128,7 +129,11 @@ class PrintControl {
   // and anything typed), the print stopped at `at` (with `retracted` mm of
   // its own retraction pending and `top_z` printed). The control waits for
   // `resume`, whose way back is the pause block's for `at` from there.
-  void resume_into_pause(const MachineState& at, const MachineState& parked, double retracted, double top_z);
+  // `taken`: the lines of the pause block that ran; when gc-send stopped
+  // inside it, the rest goes out first, and the head parks as it would have:
+  // returns how many lines of it that is.
+  std::size_t resume_into_pause(const MachineState& at, const MachineState& parked, double retracted, double top_z,
+                         std::size_t taken);
   // gc-send --resume inside layer `layer` (the journal's): the lines up to
   // the next layer are of it, not start code.
   void continue_in_layer(int layer) {
@@ -170,6 +175,7 @@ class PrintControl {
   void request_pause(std::string request, bool now);
   void finish_pausing(const MachineState& at);
   void pause_here(const MachineState& at);
+  std::size_t finish_block(const PausePoint& point, const MachineState& parked, std::size_t taken);
   PauseConfig pause_config(const MachineState& at) const;
   void hold_here(std::string request);
   void stop_at(const MachineState& at, const MachineState& resume_from, bool own_block);

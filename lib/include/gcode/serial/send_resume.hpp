@@ -6,6 +6,7 @@
 // (begin_resume); then the session goes on from the next line exactly.
 // Every refusal is a ResumeError with the reason, before anything of the
 // print is sent.
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -49,8 +50,12 @@ struct ResumeStart {
   struct Paused {
     MachineState at;
     ResumeTrack track;
+    std::size_t taken = 0;  // lines of the pause block that ran (the rest go out again)
   };
   std::optional<Paused> paused;
+  // gc-send stopped as the pause block went out, and the printer ran on
+  // without taking any of it: the print goes on, not paused.
+  bool pause_not_begun = false;
   // Why nothing is left to send ("": the print goes on): the printer had
   // taken gc-send's closing M400 (every line of the input ran), or the
   // print was cancelled. `last` and `point` are the journal's last line's.
