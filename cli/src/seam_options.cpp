@@ -46,6 +46,7 @@ PrintArea splice_printer(Filter& run, const std::vector<SpliceFile>& others, Sea
     scan_file_limits(f.fd, theirs);
     std::string differs = printer_difference(area, theirs, f.name);
     if (!differs.empty()) diag.warn(differs);
+    if (f.index != nullptr && !f.index->e_mode_warning().empty()) diag.warn(f.index->e_mode_warning());
   }
   seam.max_z = area.has_max_z ? area.max_z : 0;
   return area;

@@ -87,3 +87,24 @@ TEST_CASE("splice index: carried settings and retraction at each layer's start",
   for (int k = 1; k <= index.layers(); ++k) versions = std::max(versions, index.layer(k).settings + 1);
   CHECK(versions < index.layers());
 }
+
+TEST_CASE("splice index: a file that never sets its E mode is read in the mode its extrusions show",
+          "[splice][index][e-mode]") {
+  // PrusaSlicer's Sailfish flavour writes relative E with no M83 (its config
+  // block says so): read as absolute, every E value would be misplaced.
+  std::string path = gctest::fixture_path("prusa_cube_0.2_sailfish_rel_no_emode.gcode");
+  gctest::OpenedFile f(path);
+  gcode::LayerMarkers markers;
+  gcode::LayerIndex index(f.fd(), "part.gcode", markers);
+  REQUIRE(index.reach(3));
+  CHECK(index.point(3).state.relative_e);
+  CHECK(index.e_mode_warning().find("part.gcode never sets the E mode") != std::string::npos);
+  CHECK(index.e_mode_warning().find("relative") != std::string::npos);
+
+  // A file that says M82/M83 itself needs no guess.
+  gctest::OpenedFile g(gctest::fixture_path("cura_pegs_0.2_rel_fwretract.gcode"));
+  gcode::LayerIndex said(g.fd(), "x", markers);
+  REQUIRE(said.reach(3));
+  CHECK(said.point(3).state.relative_e);
+  CHECK(said.e_mode_warning().empty());
+}

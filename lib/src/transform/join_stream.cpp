@@ -45,6 +45,7 @@ JoinStream::~JoinStream() {
 
 void JoinStream::plan(const StreamPoint& printed, int z_decimals, const std::string& onto, Diagnostics* diag) {
   if (stream_ || next_block_ > 0) throw std::logic_error("JoinStream::plan after the first pump");
+  if (diag != nullptr && !index_->e_mode_warning().empty()) diag->warn(index_->e_mode_warning());
   blocks_ = join_blocks(*index_, printed.top_z, z_decimals, printed.extent, onto, std::string(), diag);
   printed_ = printed;
   planned_ = true;

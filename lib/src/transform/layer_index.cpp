@@ -5,6 +5,8 @@
 #include <cerrno>
 #include <system_error>
 
+#include "gcode/core/e_mode.hpp"
+#include "gcode/core/file_ends.hpp"
 #include "gcode/pipeline/pipeline.hpp"
 
 namespace gcode {
@@ -79,6 +81,16 @@ LayerIndex::LayerIndex(int fd, std::string name, const LayerMarkers& markers)
     : fd_(fd), name_(std::move(name)), markers_(markers) {
   // After every member: the recorder adds the first settings version.
   recorder_ = std::make_unique<Recorder>(*this);
+  guess_e_mode_of_file();
+}
+
+void LayerIndex::guess_e_mode_of_file() {
+  FileEnds ends;
+  if (!read_file_ends(fd_, 1 << 20, 1 << 16, ends)) return;
+  EModeReading reading = read_e_mode(EModeChoice::Auto, guess_e_mode(ends.head, ends.tail), name_);
+  if (reading.file_sets_mode) return;
+  recorder_->pipeline().set_e_mode(reading.relative);
+  e_mode_warning_ = reading.warning;
 }
 
 LayerIndex::~LayerIndex() = default;

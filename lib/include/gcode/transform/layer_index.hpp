@@ -38,7 +38,9 @@ struct IndexedLayer {
 class LayerIndex {
  public:
   // `fd` is a regular file (or anything pread works on); not owned.
-  // `name` is for messages; `markers` must outlive the index.
+  // `name` is for messages; `markers` must outlive the index. A file that
+  // never sets its E mode (M82/M83) is read in the mode guessed from its
+  // extrusions and config, as a tool reads its input (--e-mode auto).
   LayerIndex(int fd, std::string name, const LayerMarkers& markers);
   ~LayerIndex();
   LayerIndex(const LayerIndex&) = delete;
@@ -72,10 +74,13 @@ class LayerIndex {
   int fd() const { return fd_; }
   const std::string& name() const { return name_; }
   const LayerMarkers& markers() const { return markers_; }
+  // Set when the E mode was guessed: what was chosen and why, for a warning.
+  const std::string& e_mode_warning() const { return e_mode_warning_; }
 
  private:
   class Recorder;
   bool read_more();
+  void guess_e_mode_of_file();
 
   int fd_;
   std::string name_;
@@ -88,6 +93,7 @@ class LayerIndex {
   std::uint64_t read_ = 0;     // bytes read
   std::uint64_t end_code_offset_ = 0;
   std::vector<char> buffer_;
+  std::string e_mode_warning_;
 };
 
 }  // namespace gcode
