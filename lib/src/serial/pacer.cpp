@@ -95,16 +95,27 @@ void Pacer::chain() {
   }
 }
 
+Pacer::Timing Pacer::timing(double now, double arrival) {
+  const bool known = arrival != kUnknown;
+  // The least answer time seen is the host's own latency: a planner that
+  // is always full makes every answer wait, so no recent window would do.
+  if (known) base_ = std::min(base_, now - arrival);
+  const double base = base_ < kNever ? base_ : 0;
+  Timing t;
+  // When it entered the planner: its answer, less the way back.
+  t.entered = now - std::max(0.0, base);
+  t.late = known ? now - arrival - base : 0;
+  // An answer read together with the one before it (no time between them)
+  // was late because the host was: a stall, not a wait for a block.
+  t.apart = now - last_now_ >= 0.5 * t.late;
+  return t;
+}
+
 void Pacer::answered(const Answer& a, int planner_blocks, double time_scale) {
   const auto n = static_cast<long long>(blocks(planner_blocks));
   const bool known = a.arrival != kUnknown;
-  // The least answer time seen is the host's own latency: a planner that
-  // is always full makes every answer wait, so no recent window would do.
-  if (known) base_ = std::min(base_, a.now - a.arrival);
-  const double base = base_ < kNever ? base_ : 0;
-  // When it entered the planner: its answer, less the way back.
-  const double entered = a.now - std::max(0.0, base);
-  const double late = known ? a.now - a.arrival - base : 0;
+  const Timing t = timing(a.now, a.arrival);
+  const double entered = t.entered;
   if (known_ < answered_ + 1 - static_cast<long long>(kHistory)) {
     // The oldest move kept makes room: the model takes its end as known.
     known_ = answered_ + 1 - static_cast<long long>(kHistory);
@@ -124,10 +135,7 @@ void Pacer::answered(const Answer& a, int planner_blocks, double time_scale) {
     anchor_ = entered;
     sight(answered_ - holds, entered);
   } else {
-    // An answer read together with the one before it (no time between
-    // them) was late because the host was: a stall, not a wait for a block.
-    const bool apart = a.now - last_now_ >= 0.5 * late;
-    const bool waited = observe(answered_ - n, entered, late, clean_ && known && apart);
+    const bool waited = observe(answered_ - n, entered, t.late, clean_ && known && t.apart);
     // It waited for a block, and no probe ever did: the printer answers
     // them at once, and their word that it had room is worth nothing.
     if (waited && probes_ > 0 && late_probes_ == 0) probes_unheard_ = true;
@@ -162,14 +170,9 @@ void Pacer::probe_answered(double now, double arrival, int planner_blocks) {
   const long long freed = answered_ - static_cast<long long>(blocks(planner_blocks)) + 1;
   // After a command that waits its lateness is not the planner's.
   if (!clean_ || arrival == kUnknown || freed < oldest() || freed <= known_) return;
-  base_ = std::min(base_, now - arrival);
-  const double base = base_ < kNever ? base_ : 0;
-  const double late = now - arrival - base;
-  const bool apart = now - last_now_ >= 0.5 * late;
-  const double block = move(freed).seconds / rate_.factor();
-  const bool waited = apart && late > std::max(kGrace * block, 3 * jitter_);
+  const Timing t = timing(now, arrival);
+  const bool waited = observe(freed, t.entered, t.late, t.apart);
   if (waited) ++late_probes_;
-  observe(freed, now - std::max(0.0, base), late, apart);
   probe_credit_ = !waited;
   chain();
   learn_floor(freed, now);

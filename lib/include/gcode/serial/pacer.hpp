@@ -107,6 +107,15 @@ class Pacer {
   long long oldest() const { return std::max(answered_ - static_cast<long long>(kHistory) + 1, 1LL); }
   const Planned* next_to_end(double now, int planner_blocks) const;
   bool observe(long long freed, double entered, double late, bool bounded);
+  // An answer's timing: when its command entered the planner, how late it
+  // came past the host's own latency, and whether it came apart from the
+  // answer before it.
+  struct Timing {
+    double entered;
+    double late;
+    bool apart;
+  };
+  Timing timing(double now, double arrival);
   void sight(long long index, double t);
   double end_with(long long from, double start, long long to, double factor) const;
   void chain();
