@@ -145,10 +145,40 @@ gctest::RunResult killed_when(const std::string& dir, const std::string& input, 
   return run(script);
 }
 
+// Waits until gc-send's status file says paused, or gc-send ($gs) ended.
+std::string wait_paused(const std::string& status) {
+  return "for i in $(seq 1000); do grep -q '\"paused\"' " + quote(status) +
+         " 2>/dev/null && break; kill -0 $gs || break; sleep 0.01; done\n";
+}
+
 // ... killed after `seconds`.
 gctest::RunResult killed_then(const std::string& dir, const std::string& input, double seconds,
                               const std::string& then, const std::string& resume_args = "") {
   return killed_when(dir, input, "sleep " + std::to_string(seconds), then, resume_args);
+}
+
+// gc-send (`send_args`, a status file and a control FIFO in `dir`) prints
+// on gc-virtual-printer (`printer_args`) until `pause now` goes to its FIFO;
+// it is killed with SIGKILL once the shell snippet `kill_when` returns,
+// `between` runs, and gc-send --resume goes on, told `resume` once it says
+// it is paused.
+gctest::RunResult killed_while_pausing(const std::string& dir, const std::string& send_args,
+                                       const std::string& printer_args, const std::string& kill_when,
+                                       const std::string& between) {
+  std::string status = dir + "/status.json", fifo = dir + "/control", port = dir + "/printer",
+              journal = dir + "/print.journal";
+  std::string send = quote(tool_path("gc-send")) + " --port " + quote(port) + " --journal " + quote(journal) + " " +
+                     send_args + " --status-file " + quote(status) + " --control " + quote(fifo) + " ";
+  std::string script =
+      quote(tool_path("gc-virtual-printer")) + " -q --time-scale 20 " + printer_args + " --link " + quote(port) +
+      " --log " + quote(dir + "/executed.log") + " & vp=$!\n" +
+      "for i in $(seq 500); do [ -e " + quote(port) + " ] && break; sleep 0.01; done\n" + send + " -q " +
+      quote(pieces_file()) + " 2>/dev/null & gs=$!\nsleep 1; echo pause now > " + quote(fifo) + "\n" + kill_when +
+      "\nkill -9 $gs; wait $gs 2>/dev/null; rm -f " + quote(status) + "\n" + between + "\n" + send + " --resume " +
+      quote(journal) + " " + quote(pieces_file()) + " & gs=$!\n" + wait_paused(status) +
+      "kill -0 $gs && timeout 10 sh -c 'echo resume > " + quote(fifo) + "'\n" +
+      "wait $gs; s=$?; kill $vp; wait $vp; exit $s";
+  return run(script);
 }
 
 }  // namespace
@@ -223,23 +253,9 @@ TEST_CASE("gc-send --resume of a print killed while paused goes back into the pa
   for (bool reset : {false, true}) {
     INFO((reset ? "reset" : "kept running"));
     std::string dir = gctest::temp_dir();
-    std::string status = dir + "/status.json", fifo = dir + "/control";
-    std::string wait_paused = "for i in $(seq 1000); do grep -q '\"paused\"' " + quote(status) +
-                              " 2>/dev/null && break; sleep 0.01; done\n";
-    std::string control = " --rush 1 --status-file " + quote(status) + " --control " + quote(fifo) + " ";
-    std::string port = dir + "/printer", journal = dir + "/print.journal";
-    std::string send = quote(tool_path("gc-send")) + " --port " + quote(port) + " --journal " + quote(journal) + control;
-    std::string script =
-        quote(tool_path("gc-virtual-printer")) + " -q --time-scale 20 --heat-rate 1000 --link " + quote(port) +
-        " --log " + quote(dir + "/executed.log") + " & vp=$!\n" +
-        "for i in $(seq 500); do [ -e " + quote(port) + " ] && break; sleep 0.01; done\n" + send + " -q " +
-        quote(pieces_file()) + " 2>/dev/null & gs=$!\nsleep 1; echo pause now > " + quote(fifo) + "\n" + wait_paused +
-        "sleep 0.5; kill -9 $gs; wait $gs 2>/dev/null; rm -f " + quote(status) + "\n" +
-        (reset ? "kill -USR1 $vp; sleep 0.3\n" : "") + send + " --resume " + quote(journal) + " " +
-        quote(pieces_file()) + " & gs=$!\n" + wait_paused + "kill -0 $gs && timeout 10 sh -c 'echo resume > " +
-        quote(fifo) + "'\n" +
-        "wait $gs; s=$?; kill $vp; wait $vp; exit $s";
-    auto r = run(script);
+    std::string status = dir + "/status.json";
+    auto r = killed_while_pausing(dir, "--rush 1", "--heat-rate 1000", wait_paused(status) + "sleep 0.5",
+                                  reset ? "kill -USR1 $vp; sleep 0.3" : "");
     INFO(r.err);
     REQUIRE(r.status == 0);
     CHECK(r.err.find("the print was paused after input line ") != std::string::npos);
@@ -289,26 +305,14 @@ TEST_CASE("gc-send --resume of a print killed inside its pause block: the rest o
   for (int after : {0, 2, 3, 4, 5}) {
     INFO("killed " << after << " acknowledgements into the pause block");
     std::string dir = gctest::temp_dir();
-    std::string status = dir + "/status.json", fifo = dir + "/control", port = dir + "/printer",
-                journal = dir + "/print.journal";
-    std::string wait_paused = "for i in $(seq 1000); do grep -q '\"paused\"' " + quote(status) +
-                              " 2>/dev/null && break; kill -0 $gs || break; sleep 0.01; done\n";
-    std::string send = quote(tool_path("gc-send")) + " --port " + quote(port) + " --journal " + quote(journal) +
-                       " --park 20,180 --wait-moves --beep --host-message waiting --rx-buffer 40 --rush 1" +
-                       " --status-file " + quote(status) + " --control " + quote(fifo) + " ";
-    const std::string acked = "$(awk '/paused=1/{r=1} r && /^A /' " + quote(journal) + " | wc -l)";
-    std::string script =
-        quote(tool_path("gc-virtual-printer")) + " -q --time-scale 20 --heat-rate 1000 --planner 1 --queue 1 --link " +
-        quote(port) + " --log " + quote(dir + "/executed.log") + " & vp=$!\n" +
-        "for i in $(seq 500); do [ -e " + quote(port) + " ] && break; sleep 0.01; done\n" + send + " -q " +
-        quote(pieces_file()) + " 2>/dev/null & gs=$!\nsleep 1; echo pause now > " + quote(fifo) + "\n" +
-        "for i in $(seq 3000); do grep -q paused=1 " + quote(journal) + " 2>/dev/null && [ " + acked + " -ge " +
-        std::to_string(after) + " ] && break; sleep 0.002; done\n" +
-        "kill -9 $gs; wait $gs 2>/dev/null; rm -f " + quote(status) + "\nsleep 0.3\n" + send + " --resume " +
-        quote(journal) + " " + quote(pieces_file()) + " & gs=$!\n" + wait_paused +
-        "kill -0 $gs && timeout 10 sh -c 'echo resume > " + quote(fifo) + "'\n" +
-        "wait $gs; s=$?; kill $vp; wait $vp; exit $s";
-    auto r = run(script);
+    const std::string journal = quote(dir + "/print.journal");
+    const std::string acked = "$(awk '/paused=1/{r=1} r && /^A /' " + journal + " | wc -l)";
+    auto r = killed_while_pausing(
+        dir, "--park 20,180 --wait-moves --beep --host-message waiting --rx-buffer 40 --rush 1",
+        "--heat-rate 1000 --planner 1 --queue 1",
+        "for i in $(seq 3000); do grep -q paused=1 " + journal + " 2>/dev/null && [ " + acked + " -ge " +
+            std::to_string(after) + " ] && break; sleep 0.002; done",
+        "sleep 0.3");
     INFO(r.err);
     REQUIRE(r.status == 0);
     if (r.err.find("stopped inside the pause block: its ") != std::string::npos) ++inside;

@@ -63,7 +63,12 @@ std::size_t PrintControl::finish_block(const PausePoint& point, const MachineSta
   try {
     config_.park.place_or_lift(printed_, precision_, c);
     block = build_pause(point, c);
-  } catch (const std::exception&) {
+  } catch (const std::exception& e) {
+    // Half a block ran and the rest cannot be made: the head may stand half-way.
+    if (taken > 0)
+      diag_.warn(0, fmt::format("the journal's pause: the printer took {} lines of the pause block, which the pause "
+                                "options given now cannot make again ({}); it waits where it stands",
+                                taken, e.what()));
     return 0;
   }
   if (taken >= block.pause.size()) return 0;

@@ -320,7 +320,7 @@ void back_into_control(PrintControl& control, const ResumeStart& start, bool qui
                                                start.paused->track.top_z, start.paused->taken);
   if (quiet) return;
   if (rest > 0)
-    fmt::print(stderr, "gc-send: gc-send stopped inside the pause block: its {} lines the printer had not taken go "
+    fmt::print(stderr, "gc-send: the last run stopped inside the pause block: its {} lines the printer had not taken go "
                        "out now\n",
                rest);
   fmt::print(stderr, "gc-send: the print was paused after input line {}: parked, waiting for resume\n",
