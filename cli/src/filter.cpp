@@ -5,7 +5,6 @@
 
 #include "gcode/core/e_mode.hpp"
 #include "gcode/core/feature.hpp"
-#include "gcode/core/file_ends.hpp"
 
 namespace gcode::cli {
 
@@ -23,11 +22,8 @@ bool Filter::e_mode() {
   if (e_relative_ >= 0) return e_relative_ == 1;
   EModeChoice choice = EModeChoice::Auto;
   parse_e_mode(options_.e_mode, choice);
-  FileEnds ends;
-  bool regular = read_file_ends(input_.fd(), 1 << 20, 1 << 16, ends);
-  EModeGuess guess = guess_e_mode(regular ? std::string_view(ends.head) : pipeline_.read_ahead(input_.fd(), 1 << 20),
-                                  regular ? std::string_view(ends.tail) : std::string_view());
-  EModeReading reading = read_e_mode(choice, guess, input_.name());
+  EModeReading reading =
+      read_e_mode_of(input_.fd(), choice, input_.name(), [&] { return pipeline_.read_ahead(input_.fd(), 1 << 20); });
   if (reading.file_sets_mode) {
     e_relative_ = 2;
     return false;

@@ -1,5 +1,7 @@
 #include "gcode/core/e_mode.hpp"
 
+#include "gcode/core/file_ends.hpp"
+
 #include "gcode/core/line.hpp"
 #include "gcode/core/line_reader.hpp"
 #include "gcode/core/machine_state.hpp"
@@ -94,6 +96,13 @@ EModeReading read_e_mode(EModeChoice choice, const EModeGuess& guess, std::strin
     r.warning = std::string(name) + " never sets the E mode (M82/M83); reading its E values as " +
                 (r.relative ? "relative" : "absolute") + ": " + guess.reason + " (--e-mode relative|absolute to say)";
   return r;
+}
+
+EModeReading read_e_mode_of(int fd, EModeChoice choice, std::string_view name,
+                            const std::function<std::string_view()>& read_ahead) {
+  FileEnds ends;
+  if (read_file_ends(fd, 1 << 20, 1 << 16, ends)) return read_e_mode(choice, guess_e_mode(ends.head, ends.tail), name);
+  return read_e_mode(choice, guess_e_mode(read_ahead ? read_ahead() : std::string_view(), {}), name);
 }
 
 }  // namespace gcode

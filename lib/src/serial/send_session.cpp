@@ -14,7 +14,6 @@
 
 #include <fmt/format.h>
 
-#include "gcode/core/file_ends.hpp"
 #include "gcode/core/line.hpp"
 #include "gcode/core/line_reader.hpp"
 #include "gcode/serial/protocol.hpp"
@@ -115,11 +114,7 @@ PrintArea SendSession::read_print_area() {
 }
 
 int SendSession::read_e_mode(EModeChoice choice, std::string_view name) {
-  FileEnds ends;
-  bool regular = read_file_ends(input_fd_, 1 << 20, 1 << 16, ends);
-  EModeGuess guess = guess_e_mode(regular ? std::string_view(ends.head) : pipeline_.read_header(input_fd_),
-                                  regular ? std::string_view(ends.tail) : std::string_view());
-  EModeReading reading = gcode::read_e_mode(choice, guess, name);
+  EModeReading reading = read_e_mode_of(input_fd_, choice, name, [&] { return pipeline_.read_header(input_fd_); });
   if (reading.file_sets_mode) return -1;
   if (!reading.warning.empty()) diag_.warn(reading.warning);
   pipeline_.set_e_mode(reading.relative);

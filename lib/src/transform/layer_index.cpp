@@ -6,7 +6,6 @@
 #include <system_error>
 
 #include "gcode/core/e_mode.hpp"
-#include "gcode/core/file_ends.hpp"
 #include "gcode/pipeline/pipeline.hpp"
 
 namespace gcode {
@@ -85,9 +84,7 @@ LayerIndex::LayerIndex(int fd, std::string name, const LayerMarkers& markers)
 }
 
 void LayerIndex::guess_e_mode_of_file() {
-  FileEnds ends;
-  if (!read_file_ends(fd_, 1 << 20, 1 << 16, ends)) return;
-  EModeReading reading = read_e_mode(EModeChoice::Auto, guess_e_mode(ends.head, ends.tail), name_);
+  EModeReading reading = read_e_mode_of(fd_, EModeChoice::Auto, name_);
   if (reading.file_sets_mode) return;
   recorder_->pipeline().set_e_mode(reading.relative);
   e_mode_warning_ = reading.warning;

@@ -9,6 +9,7 @@
 // comments (`; use_relative_e_distances = 1`), and else how its E values
 // move. Absolute E values climb between G92 resets and fall only for a
 // retraction; relative amounts are small and jump up and down.
+#include <functional>
 #include <string>
 #include <string_view>
 
@@ -39,5 +40,11 @@ struct EModeReading {
 };
 // `name`: the input as messages call it ("part.gcode", "standard input").
 EModeReading read_e_mode(EModeChoice choice, const EModeGuess& guess, std::string_view name);
+// The same for open file `fd`, guessed from its two ends when it is a
+// regular file (its offset not moved), else from what `read_ahead` gives:
+// the start of a pipe that the caller keeps for its pipeline (none: nothing
+// to guess from).
+EModeReading read_e_mode_of(int fd, EModeChoice choice, std::string_view name,
+                            const std::function<std::string_view()>& read_ahead = {});
 
 }  // namespace gcode
