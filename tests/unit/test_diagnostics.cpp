@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <string>
+#include <string_view>
 
 #include "gcode/core/diagnostics.hpp"
 #include "capture.hpp"
@@ -65,4 +66,14 @@ TEST_CASE("diagnostics: quiet keeps errors only, verbose adds information", "[di
     d.warn(4, "w");
   });
   CHECK(verbose == "gc-test: pause before layer 3\ngc-test: line 4: warning: w\n");
+}
+
+TEST_CASE("diagnostics: a report is printed even when quiet, and ends at a NUL byte", "[diagnostics]") {
+  using namespace std::string_view_literals;
+  std::string err = stderr_of([] {
+    Diagnostics d("gc-test", -1);
+    d.report("summary: lines 12");
+    d.report("<- ok T:21\0noise"sv);
+  });
+  CHECK(err == "gc-test: summary: lines 12\ngc-test: <- ok T:21\n");
 }

@@ -20,13 +20,27 @@ int list_ports() {
   return 0;
 }
 
+// The exit statuses the man page lists: 130 after an emergency stop (M112),
+// 1 a failure or a refused resume.
+int exit_status(const gcode::serial::SendOutcome& outcome) {
+  using gcode::serial::SendEnd;
+  switch (outcome.end) {
+    case SendEnd::Finished:
+    case SendEnd::AlreadyFinished: return 0;
+    case SendEnd::EmergencyStop: return 130;
+    case SendEnd::Failed:
+    case SendEnd::Refused: return 1;
+  }
+  return 1;
+}
+
 int run(gcode::cli::SendOptions& o) {
   gcode::serial::SendJob& job = o.job;
   gcode::cli::load_pause_texts(o.pause);
   job.control.pause = o.pause.config;
   if (!o.cancel_gcode.empty()) job.control.cancel_gcode = gcode::load_custom_gcode(o.cancel_gcode);
   gcode::Diagnostics diag("gc-send", job.quiet ? -1 : job.verbose);
-  return gcode::serial::run_send_job(job, diag);
+  return exit_status(gcode::serial::run_send_job(job, diag));
 }
 
 }  // namespace

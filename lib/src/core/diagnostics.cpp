@@ -27,4 +27,8 @@ void Diagnostics::info(std::string_view message) {
 
 void Diagnostics::error(std::string_view message) { fmt::print(stderr, "{}: {}\n", tool_, message); }
 
+void Diagnostics::report(std::string_view message) {
+  fmt::print(stderr, "{}: {}\n", tool_, message.substr(0, message.find('\0')));
+}
+
 }  // namespace gcode

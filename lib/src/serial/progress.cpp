@@ -57,7 +57,8 @@ std::string progress_json(const ProgressSnapshot& s) {
       s.temperatures);
 }
 
-Progress::Progress(ProgressOptions options) : options_(std::move(options)) {}
+Progress::Progress(ProgressOptions options, Diagnostics& diagnostics)
+    : options_(std::move(options)), diag_(diagnostics) {}
 
 Progress::~Progress() {
   if (live_shown_) std::fputs("\n", stderr);
@@ -68,7 +69,7 @@ double Progress::interval() const { return options_.mode == ProgressMode::Live ?
 void Progress::print_line(const ProgressSnapshot& s) {
   if (live_shown_) std::fputs("\r\033[K", stderr);
   live_shown_ = false;
-  std::fprintf(stderr, "gc-send: %s\n", progress_line(s).c_str());
+  diag_.report(progress_line(s));
 }
 
 void Progress::report(const ProgressSnapshot& s, double now, bool force) {
@@ -87,7 +88,7 @@ void Progress::report(const ProgressSnapshot& s, double now, bool force) {
     std::fflush(stderr);
     live_shown_ = true;
   } else {
-    std::fprintf(stderr, "gc-send: %s\n", progress_line(s).c_str());
+    diag_.report(progress_line(s));
   }
 }
 

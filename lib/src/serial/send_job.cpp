@@ -53,7 +53,7 @@ std::string link_report(const Sender& sender, double baud, double scale, bool pt
 }
 
 void print_summary(const Sender& sender, const VirtualPrinter* printer, const PrintControl& control, double baud,
-                   double scale, bool pty) {
+                   double scale, bool pty, Diagnostics& diag) {
   const SenderStats& s = sender.stats();
   double elapsed = s.print_end > s.print_start && s.print_start >= 0 ? s.print_end - s.print_start : 0;
   std::string input;
@@ -64,12 +64,12 @@ void print_summary(const Sender& sender, const VirtualPrinter* printer, const Pr
   if (s.resets > 0)
     input += fmt::format(", printer resets {} ({} moves, {:.1f} mm may have printed twice)", s.resets, s.redone_moves,
                          s.redone_mm);
-  fmt::print(stderr,
-             "gc-send: summary: lines {}, time {:.3f} s, {:.0f} lines/s, {}, flow {}, resends {}, errors {}, "
-             "overdue answers {}, timeouts {}{}\n",
-             s.lines, elapsed, elapsed > 0 ? static_cast<double>(s.lines) / elapsed : 0.0,
-             link_report(sender, baud, scale, pty, elapsed), flow_mode_name(sender.flow().effective()),
-             s.resend_requests, s.errors, s.probes, s.timeouts, input);
+  diag.report(fmt::format(
+      "summary: lines {}, time {:.3f} s, {:.0f} lines/s, {}, flow {}, resends {}, errors {}, overdue answers {}, "
+      "timeouts {}{}",
+      s.lines, elapsed, elapsed > 0 ? static_cast<double>(s.lines) / elapsed : 0.0,
+      link_report(sender, baud, scale, pty, elapsed), flow_mode_name(sender.flow().effective()), s.resend_requests,
+      s.errors, s.probes, s.timeouts, input));
   for (const PauseRecord& p : control.pauses()) {
     std::string latency = p.latency_mm >= 0 ? fmt::format(", motion went on {:.2f} mm and {:.3f} s (printer time) "
                                                           "after the request",
@@ -77,16 +77,15 @@ void print_summary(const Sender& sender, const VirtualPrinter* printer, const Pr
                                             : std::string();
     std::string where = p.paused_before_layer > 0 ? fmt::format("before layer {}", p.paused_before_layer)
                                                   : fmt::format("in layer {}", p.layer);
-    fmt::print(stderr, "gc-send: pause ({}): asked in layer {}, paused {} after input line {}{}\n", p.request, p.layer,
-               where, p.input_line, latency);
+    diag.report(fmt::format("pause ({}): asked in layer {}, paused {} after input line {}{}", p.request, p.layer, where,
+                            p.input_line, latency));
   }
   if (printer != nullptr) {
     const VirtualPrinterStats& v = printer->stats();
-    fmt::print(stderr,
-               "gc-send: virtual printer: executed {}, accepted lines {}, planner starved {:.2f} % of the print, "
-               "bytes lost to overruns {}, print time {:.1f} s simulated\n",
-               v.executed, v.accepted_lines, 100.0 * printer->starvation(), v.overrun_bytes,
-               v.last_move_end > v.first_move ? v.last_move_end - v.first_move : 0.0);
+    diag.report(fmt::format("virtual printer: executed {}, accepted lines {}, planner starved {:.2f} % of the print, "
+                            "bytes lost to overruns {}, print time {:.1f} s simulated",
+                            v.executed, v.accepted_lines, 100.0 * printer->starvation(), v.overrun_bytes,
+                            v.last_move_end > v.first_move ? v.last_move_end - v.first_move : 0.0));
   }
 }
 
@@ -101,9 +100,9 @@ std::string input_name(const std::string& file) {
   return out;
 }
 
-void print_journal_summary(const JournalWriter& w) {
-  fmt::print(stderr, "gc-send: journal {}: {} bytes written, {} on disk, {} syncs, {} compactions\n", w.path(),
-             w.bytes_written(), w.file_bytes(), w.syncs(), w.compactions());
+void print_journal_summary(const JournalWriter& w, Diagnostics& diag) {
+  diag.report(fmt::format("journal {}: {} bytes written, {} on disk, {} syncs, {} compactions", w.path(),
+                          w.bytes_written(), w.file_bytes(), w.syncs(), w.compactions()));
 }
 
 }  // namespace
@@ -239,33 +238,71 @@ void keep_unfinished(const SendJob& job, Diagnostics& diag) {
                                                                           old.header.get("port"))));
 }
 
-int exit_status(const Sender& sender, const SendJob& job, const SendJournal* journal, const std::string& input) {
-  switch (sender.state()) {
-    case SenderState::Done: return 0;
-    case SenderState::Cancelled: return 130;
-    default:
-      std::fprintf(stderr, "gc-send: %s\n", sender.failure().c_str());
-      // The part is on the bed: say how to go on with it.
-      if (journal != nullptr && sender.last_acknowledged().number > 0)
-        std::fprintf(stderr, "gc-send: the journal holds the print; to go on with it: %s\n",
-                     resume_command(journal->writer().path(), input, job.port).c_str());
-      return 1;
+// The log of every line both ways with timestamps (--log), and the same
+// lines on stderr at -vv.
+class TraceLog {
+ public:
+  TraceLog(const SendJob& job, Diagnostics& diag) : diag_(diag), echo_(job.verbose >= 2) {
+    if (job.log_path.empty()) return;
+    file_ = std::fopen(job.log_path.c_str(), "w");
+    if (file_ == nullptr) throw std::runtime_error(fmt::format("cannot write {}", job.log_path));
   }
+  ~TraceLog() {
+    if (file_ != nullptr) std::fclose(file_);
+  }
+  TraceLog(const TraceLog&) = delete;
+  TraceLog& operator=(const TraceLog&) = delete;
+
+  bool wanted() const { return echo_ || file_ != nullptr; }
+  void operator()(std::string_view message) const {
+    if (file_ != nullptr) fmt::print(file_, "{:.6f} {}\n", EventLoop::now(), message);
+    if (echo_) diag_.report(message);
+  }
+
+ private:
+  Diagnostics& diag_;
+  bool echo_;
+  std::FILE* file_ = nullptr;
+};
+
+Sender::Logger sender_log(const TraceLog& trace, Diagnostics& diag) {
+  return [&trace, &diag](LogLevel level, std::uint64_t input_line, std::string_view message) {
+    if (level == LogLevel::Trace) {
+      trace(message);
+    } else if (level == LogLevel::Warning) {
+      diag.warn(input_line, message);
+    } else {
+      diag.info(message);
+    }
+  };
+}
+
+SenderConfig sender_config(const SendJob& job, const PortSetup& port, bool resuming) {
+  SenderConfig config = job.sender;
+  // A pseudo-terminal has no baud rate: its bytes cross at once, unless the
+  // simulated printer behind it reports its own (M115 BAUD, TIME_SCALE).
+  config.link_bytes_per_second = port.pty ? 0 : port.baud / 10 * port.scale;
+  config.time_scale = port.scale;
+  if (resuming) config.handshake = false;  // M110 N0 would lose the numbering the printer goes on with
+  return config;
+}
+
+std::unique_ptr<SendJournal> open_journal(const SendJob& job, const InputIdentity& input) {
+  return std::make_unique<SendJournal>(JournalOptions{.path = job.journal_path}, input, job.port);
 }
 
 // The sender goes on where the resume plan says: the next line exactly, or
 // after a reset the resume sequence and the input from the first command
 // that may not have run.
-void go_on(Sender& sender, const ResumeStart& start, bool quiet) {
+void go_on(Sender& sender, const ResumeStart& start, bool quiet, Diagnostics& diag) {
   const ResumePlan& plan = start.plan;
   if (plan.condition == PrinterCondition::KeptRunning) {
     sender.continue_from(start.next, plan.state, read_track_fields(start.point, plan.state), plan.input_line,
                          plan.layer);
     if (!quiet)
-      fmt::print(stderr,
-                 "gc-send: resuming: the printer kept running and took line {} last (input line {}, layer {}); on "
-                 "from input line {}\n",
-                 start.last, plan.input_line, plan.layer, plan.input_line + 1);
+      diag.report(fmt::format("resuming: the printer kept running and took line {} last (input line {}, layer {}); "
+                              "on from input line {}",
+                              start.last, plan.input_line, plan.layer, plan.input_line + 1));
     return;
   }
   ResetResume way{plan.state, plan.track.top_z, plan.nozzle_z, plan.track.retracted, plan.track.retraction};
@@ -280,56 +317,103 @@ void go_on(Sender& sender, const ResumeStart& start, bool quiet) {
                               plan.input_line);
   if (quiet) return;
   if (plan.way_back_line != 0)
-    fmt::print(stderr,
-               "gc-send: resuming: the printer kept running and took line {} last, inside the way back after a "
-               "reset; that way back again, to input line {} (layer {}): heating, Z declared, X and Y homed\n",
-               plan.way_back_line, plan.input_line, plan.layer);
+    diag.report(fmt::format("resuming: the printer kept running and took line {} last, inside the way back after a "
+                            "reset; that way back again, to input line {} (layer {}): heating, Z declared, X and Y "
+                            "homed",
+                            plan.way_back_line, plan.input_line, plan.layer));
   else
-    fmt::print(stderr,
-               "gc-send: resuming: the printer reset since the print stopped ({}); going back to input line {} "
-               "(layer {}): heating, Z declared, X and Y homed, {} moves ({:.1f} mm) may print twice\n",
-               start.greeted ? "it greeted again" : "its line numbers are back at 0", plan.input_line, plan.layer,
-               plan.redone_moves, plan.redone_mm);
+    diag.report(fmt::format("resuming: the printer reset since the print stopped ({}); going back to input line {} "
+                            "(layer {}): heating, Z declared, X and Y homed, {} moves ({:.1f} mm) may print twice",
+                            start.greeted ? "it greeted again" : "its line numbers are back at 0", plan.input_line,
+                            plan.layer, plan.redone_moves, plan.redone_mm));
 }
 
 // gc-send was stopped after the printer took its closing M400, or while
 // the print was cancelled: nothing is sent, and the journal says the print
 // ended (a resume of it is then refused as finished).
-int already_complete(const SendJob& job, const ResumeStart& start, const InputIdentity& input) {
-  SendJournal journal(JournalOptions{.path = job.journal_path}, input, job.port);
-  journal.continue_after(start.last, start.point);
-  journal.finish(EventLoop::now());
+SendOutcome already_complete(const SendJob& job, const ResumeStart& start, const InputIdentity& input,
+                             Diagnostics& diag) {
+  std::unique_ptr<SendJournal> journal = open_journal(job, input);
+  journal->continue_after(start.last, start.point);
+  journal->finish(EventLoop::now());
   if (!job.quiet)
-    fmt::print(stderr, "gc-send: {}; nothing sent, the journal {} is marked finished\n", start.complete,
-               job.journal_path);
-  return 0;
+    diag.report(fmt::format("{}; nothing sent, the journal {} is marked finished", start.complete, job.journal_path));
+  return {SendEnd::AlreadyFinished, {}};
 }
 
 // The control as the journal left it: the live speed, and the pause the
 // print stood in.
-void back_into_control(PrintControl& control, const ResumeStart& start, bool quiet) {
+void back_into_control(PrintControl& control, const ResumeStart& start, bool quiet, Diagnostics& diag) {
   double speed = 1;
   if (!parse_number(start.point.get("speed", "1"), speed)) speed = 1;
   control.restore_speed(speed);
   if (start.pause_not_begun && !quiet)
-    fmt::print(stderr, "gc-send: the printer took none of the pause block gc-send was sending when it stopped: "
-                       "printing on after input line {} (pause again if wanted)\n",
-               start.plan.input_line);
+    diag.report(fmt::format("the printer took none of the pause block gc-send was sending when it stopped: printing "
+                            "on after input line {} (pause again if wanted)",
+                            start.plan.input_line));
   if (!start.paused) return;
   std::size_t rest = control.resume_into_pause(start.paused->at, start.plan.state, start.paused->track.retracted,
                                                start.paused->track.top_z, start.paused->taken);
   if (quiet) return;
   if (rest > 0)
-    fmt::print(stderr, "gc-send: the last run stopped inside the pause block: its {} lines the printer had not taken go "
-                       "out now\n",
-               rest);
-  fmt::print(stderr, "gc-send: the print was paused after input line {}: parked, waiting for resume\n",
-             start.plan.input_line);
+    diag.report(fmt::format("the last run stopped inside the pause block: its {} lines the printer had not taken go "
+                            "out now",
+                            rest));
+  diag.report(fmt::format("the print was paused after input line {}: parked, waiting for resume",
+                          start.plan.input_line));
 }
 
-}  // namespace
+// Where the session starts from besides the input: a resume's plan, or
+// nothing for a fresh print.
+struct SessionStart {
+  const ResumeStart* resume = nullptr;
+  bool from_stdin = false;  // the input is a stream: no second read of it
+};
 
-int run_send_job(SendJob& job, Diagnostics& diag) {
+// The session's control (the park by the file's area, the E mode, the
+// state a resume left), its progress, the reconnect and the layer count.
+void prepare_session(SendSession& session, const SendJob& job, PortSetup& port, const InputFile& input,
+                     SessionStart from, Diagnostics& diag) {
+  PrintControlConfig control = job.control;
+  const bool resuming = from.resume != nullptr;
+  // (A resumed stream is past its header: the park goes by the options.)
+  if (job.park)
+    control.park = job.park(resuming && from.from_stdin ? PrintArea{} : session.read_print_area(), control.pause);
+  // A resume's E mode is the journal's state (Pipeline::start_from), and a
+  // stream is past its header.
+  int e_relative = resuming ? -1 : session.read_e_mode(job.e_mode, input.name());
+  session.set_control(control, job.control_path);
+  if (resuming) back_into_control(*session.control(), *from.resume, job.quiet, diag);
+  if (!port.printer) session.set_reconnect(job.port, PortOptions{job.baud, false}, job.reconnect);
+  ProgressOptions progress = job.progress;
+  if (job.quiet) progress.mode = ProgressMode::Off;  // the status file is still kept
+  session.set_progress(progress);
+  if (port.printer) set_motion_probe(session, port);
+  if (!from.from_stdin && !job.quiet && !resuming) count_layers(input.name(), session, e_relative);
+  if (session.fifo() != nullptr) diag.info(fmt::format("control FIFO: {}", session.fifo()->path()));
+}
+
+// After the print: the journal closed when the print ended, the summaries,
+// and how it ended; a failure says how to go on with the part on the bed.
+SendOutcome finish(const Sender& sender, SendSession& session, PortSetup& port, SendJournal* journal,
+                   const SendJob& job, const std::string& input, Diagnostics& diag) {
+  const SenderState state = sender.state();
+  if (journal != nullptr && (state == SenderState::Done || state == SenderState::Cancelled))
+    journal->finish(EventLoop::now());
+  if (!job.quiet) print_summary(sender, port.printer.get(), *session.control(), port.baud, port.scale, port.pty, diag);
+  if (journal != nullptr && !job.quiet) print_journal_summary(journal->writer(), diag);
+  // The session closed the descriptor it was given when the port went away.
+  if (session.port_replaced()) port.fd = -1;
+  if (state == SenderState::Done) return {SendEnd::Finished, {}};
+  if (state == SenderState::Cancelled) return {SendEnd::EmergencyStop, {}};
+  diag.report(sender.failure());
+  if (journal != nullptr && sender.last_acknowledged().number > 0)
+    diag.report(fmt::format("the journal holds the print; to go on with it: {}",
+                            resume_command(journal->writer().path(), input, job.port)));
+  return {SendEnd::Failed, sender.failure()};
+}
+
+SendOutcome send(SendJob& job, Diagnostics& diag) {
   // Before the journal is read or replaced: another gc-send may be writing
   // it (and printing).
   std::optional<JournalLock> lock;
@@ -347,80 +431,44 @@ int run_send_job(SendJob& job, Diagnostics& diag) {
   std::unique_ptr<SendJournal> journal;
   if (!job.journal_path.empty() && !resume) {
     keep_unfinished(job, diag);
-    journal = std::make_unique<SendJournal>(JournalOptions{.path = job.journal_path}, identify_input(name, input.fd()),
-                                            job.port);
+    journal = open_journal(job, identify_input(name, input.fd()));
   }
   PortSetup port(job, loop, resume ? job.reconnect : 0, diag);
-  SenderConfig config = job.sender;
-  // A pseudo-terminal has no baud rate: its bytes cross at once, unless the
-  // simulated printer behind it reports its own (M115 BAUD, TIME_SCALE).
-  config.link_bytes_per_second = port.pty ? 0 : port.baud / 10 * port.scale;
-  config.time_scale = port.scale;
-  if (resume) config.handshake = false;  // M110 N0 would lose the numbering the printer goes on with
-  std::FILE* log = nullptr;
-  if (!job.log_path.empty()) {
-    log = std::fopen(job.log_path.c_str(), "w");
-    if (log == nullptr) throw std::runtime_error(fmt::format("cannot write {}", job.log_path));
-  }
-  bool trace = job.verbose >= 2;
-  auto trace_line = [&](std::string_view message) {
-    if (log != nullptr) fmt::print(log, "{:.6f} {}\n", EventLoop::now(), message);
-    if (trace) std::fprintf(stderr, "gc-send: %.*s\n", static_cast<int>(message.size()), message.data());
-  };
-  Sender sender(config, [&](LogLevel level, std::uint64_t input_line, std::string_view message) {
-    if (level == LogLevel::Trace) {
-      trace_line(message);
-    } else if (level == LogLevel::Warning) {
-      diag.warn(input_line, message);
-    } else {
-      diag.info(message);
-    }
-  });
-  sender.set_trace(trace || log != nullptr);
+  const SenderConfig config = sender_config(job, port, resume.has_value());
+  const TraceLog trace(job, diag);
+  Sender sender(config, sender_log(trace, diag));
+  sender.set_trace(trace.wanted());
   // (The session is given the port the printer answered on.)
   std::optional<ProbeResult> probe;
-  if (resume) probe = probe_through_drops(port, job, std::max(30.0, config.timeout), trace_line, diag);
+  if (resume) probe = probe_through_drops(port, job, std::max(30.0, config.timeout), std::cref(trace), diag);
   SendSession session(loop, sender, input.fd(), port.fd, diag,
                       job.layer_marker.empty() ? LayerMarkers() : LayerMarkers(job.layer_marker));
   std::optional<ResumeStart> start;
   if (resume) {
-    ResumeLimits limits;
-    limits.can_home_xy_alone = config.home_xy_alone;
-    start = begin_resume(*resume, *probe, session, limits);
-    if (!start->complete.empty()) return already_complete(job, *start, identify_input(name, input.fd()));
-    journal = std::make_unique<SendJournal>(JournalOptions{.path = job.journal_path}, identify_input(name, input.fd()),
-                                            job.port);
+    start = begin_resume(*resume, *probe, session, ResumeLimits{.can_home_xy_alone = config.home_xy_alone});
+    if (!start->complete.empty()) return already_complete(job, *start, identify_input(name, input.fd()), diag);
+    journal = open_journal(job, identify_input(name, input.fd()));
     journal->continue_after(start->last, start->point);
     session.set_journal(journal.get());
-    go_on(sender, *start, job.quiet);
+    go_on(sender, *start, job.quiet, diag);
   } else if (journal) {
     session.set_journal(journal.get());
   }
-  PrintControlConfig control = job.control;
-  // (A resumed stream is past its header: the park goes by the options.)
-  if (job.park) control.park = job.park(resume && name == "-" ? PrintArea{} : session.read_print_area(), control.pause);
-  // A resume's E mode is the journal's state (Pipeline::start_from), and a
-  // stream is past its header.
-  int e_relative = resume ? -1 : session.read_e_mode(job.e_mode, input.name());
-  session.set_control(control, job.control_path);
-  if (start) back_into_control(*session.control(), *start, job.quiet);
-  if (!port.printer) session.set_reconnect(job.port, PortOptions{job.baud, false}, job.reconnect);
-  ProgressOptions progress = job.progress;
-  if (job.quiet) progress.mode = ProgressMode::Off;  // the status file is still kept
-  session.set_progress(progress);
-  if (port.printer) set_motion_probe(session, port);
-  if (!file.empty() && file != "-" && !job.quiet && !resume) count_layers(file, session, e_relative);
-  if (session.fifo() != nullptr) diag.info(fmt::format("control FIFO: {}", session.fifo()->path()));
+  prepare_session(session, job, port, input, SessionStart{start ? &*start : nullptr, name == "-"}, diag);
   session.run();
+  return finish(sender, session, port, journal.get(), job, name, diag);
+}
 
-  if (journal && (sender.state() == SenderState::Done || sender.state() == SenderState::Cancelled))
-    journal->finish(EventLoop::now());
-  if (!job.quiet) print_summary(sender, port.printer.get(), *session.control(), port.baud, port.scale, port.pty);
-  if (journal && !job.quiet) print_journal_summary(journal->writer());
-  if (log != nullptr) std::fclose(log);
-  // The session closed the descriptor it was given when the port went away.
-  if (session.port_replaced()) port.fd = -1;
-  return exit_status(sender, job, journal.get(), name);
+}  // namespace
+
+SendOutcome run_send_job(SendJob& job, Diagnostics& diag) {
+  try {
+    return send(job, diag);
+  } catch (const ResumeError& e) {
+    // A resume refused before anything of the print was sent.
+    diag.error(e.what());
+    return {SendEnd::Refused, e.what()};
+  }
 }
 
 }  // namespace gcode::serial

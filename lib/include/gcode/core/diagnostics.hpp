@@ -21,6 +21,10 @@ class Diagnostics {
   void warn(std::string_view message) { warn(0, message); }
   void info(std::string_view message);
   void error(std::string_view message);
+  // A line the user asked for (a summary, a progress line, the -vv trace):
+  // printed whatever the verbosity, the caller decides when. It ends at a
+  // NUL byte: a printer's line noise is cut there, as printf always cut it.
+  void report(std::string_view message);
   std::uint64_t warnings() const { return warnings_; }
   const std::string& tool() const { return tool_; }
 

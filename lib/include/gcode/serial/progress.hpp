@@ -7,6 +7,8 @@
 #include <string>
 #include <string_view>
 
+#include "gcode/core/diagnostics.hpp"
+
 namespace gcode::serial {
 
 struct ProgressSnapshot {
@@ -51,7 +53,8 @@ std::string progress_json(const ProgressSnapshot& s);
 
 class Progress {
  public:
-  explicit Progress(ProgressOptions options);
+  // Plain lines go out through `diagnostics` (the tool's name before them).
+  Progress(ProgressOptions options, Diagnostics& diagnostics);
   ~Progress();  // ends a live line
   // Writes the line (when its interval has passed, or `force`) and the
   // status file (when the snapshot changed state or layer, or `force`).
@@ -64,6 +67,7 @@ class Progress {
   void write_status(const ProgressSnapshot& s);
 
   ProgressOptions options_;
+  Diagnostics& diag_;
   double last_line_ = -1e300;
   bool live_shown_ = false;
   std::string last_state_;

@@ -1,9 +1,10 @@
 #pragma once
 // One run of gc-send, from its settled options: the port (a device, a pty,
 // or the in-process virtual printer), the sender, the session with its
-// control FIFO and progress, and the summary at the end. Returns the exit
-// status: 0 done (a cancel the printer confirmed included), 1 failed, 130
-// after an emergency stop.
+// control FIFO and progress, and the summary at the end. Messages go out
+// through the Diagnostics the tool gives; the run says how it ended as a
+// value, and the tool makes an exit status of it.
+#include <cstdint>
 #include <functional>
 #include <string>
 
@@ -38,7 +39,21 @@ struct SendJob {
   int verbose = 0;
 };
 
+// How a run ended.
+enum class SendEnd : std::uint8_t {
+  Finished,         // the printer took every line (a cancel it confirmed included)
+  AlreadyFinished,  // a resume found the print ended: nothing sent, the journal closed
+  EmergencyStop,    // cancelled with M112 (a second Ctrl-C): no safe end
+  Failed,           // `reason` says why (reported already)
+  Refused,          // a resume refused before anything was sent: `reason` says why (reported already)
+};
+
+struct SendOutcome {
+  SendEnd end = SendEnd::Finished;
+  std::string reason;  // Failed: the sender's failure; Refused: the refusal
+};
+
 bool is_virtual_port(const std::string& port);
-int run_send_job(SendJob& job, Diagnostics& diagnostics);
+SendOutcome run_send_job(SendJob& job, Diagnostics& diagnostics);
 
 }  // namespace gcode::serial

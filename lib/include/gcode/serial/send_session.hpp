@@ -60,7 +60,7 @@ class SendSession : private Stage {
   const LayerMarkers& markers() const { return markers_; }
   // Pausing, cancelling, speed: before run(). `control_path` empty: no FIFO.
   void set_control(const PrintControlConfig& config, const std::string& control_path);
-  void set_progress(const ProgressOptions& options) { progress_.emplace(options); }
+  void set_progress(const ProgressOptions& options) { progress_.emplace(options, diag_); }
   // The layers of the whole input, when known beforehand (a regular file).
   void set_total_layers(int layers) { total_layers_ = layers; }
   // The estimator's printer seconds for the whole input (sender_estimator_options),
