@@ -15,11 +15,6 @@ namespace {
 
 constexpr const char* kNotePrefix = "gc-relayer: ";
 
-std::string mm(double v) {
-  char b[kMaxNumberChars];
-  return std::string(number_text(v, 4, b));
-}
-
 }  // namespace
 
 void add_relayer_options(Tool& tool, RelayerToolOptions& o) {
@@ -110,15 +105,16 @@ std::string layer_candidates_text(const RelayerToolOptions& o) {
   std::string text;
   if (c.below > 0) {
     const LayerInfo& l = index.layer(c.below).info;
-    text += fmt::format("layer {}  Z {}  height {}  {} mm below {}: printed\n", l.index, mm(l.z), mm(l.height),
-                        mm(z - l.z), mm(z));
+    text += fmt::format("layer {}  Z {}  height {}  {} mm below {}: printed\n", l.index, number_string(l.z, 4),
+                        number_string(l.height, 4), number_string(z - l.z, 4), number_string(z, 4));
   }
   if (c.above > 0) {
     const LayerInfo& l = index.layer(c.above).info;
     text += fmt::format("layer {}  Z {}  height {}  {} mm above {}: --resume-from-z {} goes on from here\n", l.index,
-                        mm(l.z), mm(l.height), mm(l.z - z), mm(z), mm(z));
+                        number_string(l.z, 4), number_string(l.height, 4), number_string(l.z - z, 4),
+                        number_string(z, 4), number_string(z, 4));
   } else {
-    text += fmt::format("no layer above Z {}: the print is complete\n", mm(z));
+    text += fmt::format("no layer above Z {}: the print is complete\n", number_string(z, 4));
   }
   return text;
 }

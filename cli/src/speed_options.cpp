@@ -103,15 +103,13 @@ void resolve_speed_from_input(SpeedToolOptions& o, Filter& run, const LayerSelec
 void report_speed_change(const SpeedOptions& s, const SpeedStats& stats, Diagnostics& diag) {
   if (stats.capped() > 0) {
     std::vector<std::string> parts;
-    char buffer[kMaxNumberChars];
-    auto mm = [&](double v) { return std::string(number_text(v, 3, buffer)); };
     if (stats.capped_flow > 0)
-      parts.push_back(fmt::format("{} by --max-flow {} mm3/s (filament {} mm)", stats.capped_flow, mm(s.max_flow),
-                                  mm(s.filament_diameter)));
+      parts.push_back(fmt::format("{} by --max-flow {} mm3/s (filament {} mm)", stats.capped_flow,
+                                  number_string(s.max_flow, 3), number_string(s.filament_diameter, 3)));
     if (stats.capped_max_speed > 0)
-      parts.push_back(fmt::format("{} by --max-speed {} mm/s", stats.capped_max_speed, mm(s.max_speed)));
+      parts.push_back(fmt::format("{} by --max-speed {} mm/s", stats.capped_max_speed, number_string(s.max_speed, 3)));
     if (stats.capped_min_speed > 0)
-      parts.push_back(fmt::format("{} by --min-speed {} mm/s", stats.capped_min_speed, mm(s.min_speed)));
+      parts.push_back(fmt::format("{} by --min-speed {} mm/s", stats.capped_min_speed, number_string(s.min_speed, 3)));
     diag.warn(fmt::format("{} moves capped: {}", stats.capped(), fmt::join(parts, ", ")));
   }
   if (stats.left_alone > 0) diag.warn(fmt::format("{} moves of the region left at their speed", stats.left_alone));

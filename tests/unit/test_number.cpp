@@ -77,3 +77,29 @@ TEST_CASE("format_scaled writes a scaled integer exactly as format_number writes
   CHECK(gcode::number_text(-2.5, 0, b) == "-3");
   CHECK(gcode::number_text(1e300, 9, b).size() > 0);
 }
+
+TEST_CASE("number_string spells a value as the messages and generated G-code write it", "[number]") {
+  using gcode::number_string;
+  // Rounding: half away from zero at the decimals asked for.
+  CHECK(number_string(0.03125, 4) == "0.0313");
+  CHECK(number_string(-0.03125, 4) == "-0.0313");
+  CHECK(number_string(1.25, 1) == "1.3");
+  CHECK(number_string(0.2 + 0.1, 4) == "0.3");
+  CHECK(number_string(7.5, 0) == "8");
+  // Trailing zeros and a bare point dropped.
+  CHECK(number_string(0.2, 3) == "0.2");
+  CHECK(number_string(12.0, 4) == "12");
+  CHECK(number_string(100.10, 3) == "100.1");
+  // -0, and a negative value that rounds to zero, are "0".
+  CHECK(number_string(-0.0, 3) == "0");
+  CHECK(number_string(-0.0004, 3) == "0");
+  // Large values are written in full, never with an exponent; beyond 1e15 clamped.
+  CHECK(number_string(123456789.25, 2) == "123456789.25");
+  CHECK(number_string(-1e12, 3) == "-1000000000000");
+  CHECK(number_string(1e20, 3) == "1000000000000000");
+  // The same text as number_text at every precision.
+  char b[gcode::kMaxNumberChars];
+  for (int d = 0; d <= 9; ++d)
+    for (double v : {0.0, 1.0 / 3, -2.675, 1234.5678901, 0.1 + 0.2})
+      REQUIRE(number_string(v, d) == gcode::number_text(v, d, b));
+}

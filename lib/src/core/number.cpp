@@ -179,4 +179,9 @@ std::string_view number_text(double value, int decimals, char (&buffer)[kMaxNumb
   return {buffer, format_number(value, decimals, static_cast<char*>(buffer))};
 }
 
+std::string number_string(double value, int decimals) {
+  char buffer[kMaxNumberChars];
+  return {buffer, format_number(value, decimals, buffer)};
+}
+
 }  // namespace gcode

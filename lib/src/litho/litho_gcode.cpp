@@ -20,11 +20,6 @@ constexpr double kXYUnit = 1e-4;
 constexpr int kXYZ = 3;  // Z
 constexpr int kE = 7;
 
-std::string num(double v, int decimals = 3) {
-  char b[kMaxNumberChars];
-  return std::string(number_text(v, decimals, b));
-}
-
 const char* type_name(PathRole role) {
   switch (role) {
     case PathRole::WallOuter:
@@ -221,40 +216,40 @@ std::vector<std::string> litho_parameters(const LithophanePlanner& planner, cons
                            map.image().width(), map.image().height()));
   add("shape", map.closed() ? "cylinder" : "flat");
   if (map.closed()) {
-    add("diameter", num(m.diameter) + " mm (base surface)");
-    add("circumference", num(map.length()) + " mm");
+    add("diameter", number_string(m.diameter, 3) + " mm (base surface)");
+    add("circumference", number_string(map.length(), 3) + " mm");
   } else {
-    add("width", num(map.length()) + " mm");
+    add("width", number_string(map.length(), 3) + " mm");
   }
-  add("height", num(map.height()) + " mm");
-  add("min", num(m.min_thickness) + " mm");
-  add("max", num(m.max_thickness) + " mm");
-  add("border", num(m.border) + " mm");
+  add("height", number_string(map.height(), 3) + " mm");
+  add("min", number_string(m.min_thickness, 3) + " mm");
+  add("max", number_string(m.max_thickness, 3) + " mm");
+  add("border", number_string(m.border, 3) + " mm");
   add("invert", m.tone.invert ? "yes" : "no");
-  add("gamma", num(m.tone.gamma));
-  add("contrast", num(m.tone.contrast));
-  add("layer_height", num(o.layer_height) + " mm");
+  add("gamma", number_string(m.tone.gamma, 3));
+  add("contrast", number_string(m.tone.contrast, 3));
+  add("layer_height", number_string(o.layer_height, 3) + " mm");
   add("layers", std::to_string(planner.layer_count()));
-  add("nozzle", num(o.nozzle) + " mm");
-  add("line_width", num(o.line_width) + " mm");
-  add("filament_diameter", num(o.filament_diameter) + " mm");
-  add("wall_speed", num(o.wall_speed) + " mm/s");
-  add("infill_speed", num(o.infill_speed) + " mm/s");
-  add("max_flow", num(o.max_flow) + " mm3/s");
-  add("fill_rate", num(planner.fill_rate()) + " mm3/s (constant extruder rate of the passes)");
-  add("wall_rate", num(planner.wall_rate()) + " mm3/s");
-  add("min_speed", num(o.min_speed) + " mm/s");
-  add("max_speed", num(o.max_speed) + " mm/s");
-  add("min_pass_width", num(o.min_pass_width) + " mm");
-  add("max_pass_width", num(o.max_pass_width) + " mm");
-  add("resolution", num(o.resolution) + " mm");
-  add("first_layer_factor", num(o.first_layer_factor));
-  add("center", num(o.center_x) + "," + num(o.center_y) + " mm");
-  add("nozzle_temp", num(options.nozzle_temp) + " C");
-  add("bed_temp", num(options.bed_temp) + " C");
-  add("travel_speed", num(options.travel_speed) + " mm/s");
-  add("retract", num(options.retract_length, 5) + " mm at " + num(options.retract_speed) + " mm/s, travel over " +
-                     num(options.retract_min_travel) + " mm");
+  add("nozzle", number_string(o.nozzle, 3) + " mm");
+  add("line_width", number_string(o.line_width, 3) + " mm");
+  add("filament_diameter", number_string(o.filament_diameter, 3) + " mm");
+  add("wall_speed", number_string(o.wall_speed, 3) + " mm/s");
+  add("infill_speed", number_string(o.infill_speed, 3) + " mm/s");
+  add("max_flow", number_string(o.max_flow, 3) + " mm3/s");
+  add("fill_rate", number_string(planner.fill_rate(), 3) + " mm3/s (constant extruder rate of the passes)");
+  add("wall_rate", number_string(planner.wall_rate(), 3) + " mm3/s");
+  add("min_speed", number_string(o.min_speed, 3) + " mm/s");
+  add("max_speed", number_string(o.max_speed, 3) + " mm/s");
+  add("min_pass_width", number_string(o.min_pass_width, 3) + " mm");
+  add("max_pass_width", number_string(o.max_pass_width, 3) + " mm");
+  add("resolution", number_string(o.resolution, 3) + " mm");
+  add("first_layer_factor", number_string(o.first_layer_factor, 3));
+  add("center", number_string(o.center_x, 3) + "," + number_string(o.center_y, 3) + " mm");
+  add("nozzle_temp", number_string(options.nozzle_temp, 3) + " C");
+  add("bed_temp", number_string(options.bed_temp, 3) + " C");
+  add("travel_speed", number_string(options.travel_speed, 3) + " mm/s");
+  add("retract", number_string(options.retract_length, 5) + " mm at " + number_string(options.retract_speed, 3) +
+                     " mm/s, travel over " + number_string(options.retract_min_travel, 3) + " mm");
   add("fan", std::to_string(options.fan));
   add("start", options.start_code.empty() ? "built-in Marlin" : (options.start_name.empty() ? "given" : options.start_name));
   add("end", options.end_code.empty() ? "built-in Marlin" : (options.end_name.empty() ? "given" : options.end_name));
@@ -281,14 +276,14 @@ void write_header(Emitter& e, const LithophanePlanner& planner, const LithoGcode
                   const LithoGcodeStats& stats, const BedBounds& bounds) {
   e.line(";FLAVOR:Marlin");
   if (options.estimated_seconds > 0) e.line(fmt::format(";TIME:{}", std::lround(options.estimated_seconds)));
-  e.line(fmt::format(";Filament used: {}m", num(stats.filament / 1000, 5)));
-  e.line(fmt::format(";Layer height: {}", num(planner.options().layer_height)));
-  e.line(fmt::format(";MINX:{}", num(bounds.min_x)));
-  e.line(fmt::format(";MINY:{}", num(bounds.min_y)));
-  e.line(fmt::format(";MINZ:{}", num(planner.layer_z(0))));
-  e.line(fmt::format(";MAXX:{}", num(bounds.max_x)));
-  e.line(fmt::format(";MAXY:{}", num(bounds.max_y)));
-  e.line(fmt::format(";MAXZ:{}", num(planner.layer_z(planner.layer_count() - 1))));
+  e.line(fmt::format(";Filament used: {}m", number_string(stats.filament / 1000, 5)));
+  e.line(fmt::format(";Layer height: {}", number_string(planner.options().layer_height, 3)));
+  e.line(fmt::format(";MINX:{}", number_string(bounds.min_x, 3)));
+  e.line(fmt::format(";MINY:{}", number_string(bounds.min_y, 3)));
+  e.line(fmt::format(";MINZ:{}", number_string(planner.layer_z(0), 3)));
+  e.line(fmt::format(";MAXX:{}", number_string(bounds.max_x, 3)));
+  e.line(fmt::format(";MAXY:{}", number_string(bounds.max_y, 3)));
+  e.line(fmt::format(";MAXZ:{}", number_string(planner.layer_z(planner.layer_count() - 1), 3)));
   e.line("");
   e.line(fmt::format(";Generated with gc-litho {}: a lithophane in variable-width passes at a constant extruder rate",
                      kVersion));

@@ -163,30 +163,30 @@ std::vector<std::string> texture_parameters(const std::string& image_name, const
                                             const TextureProjection& projection, const SpeedMapping& speeds,
                                             double resolution, double skip_z, const std::string& types) {
   const TextureMapping& m = projection.mapping();
-  char buffer[kMaxNumberChars];
-  auto mm = [&](double v) { return std::string(number_text(v, 3, buffer)); };
   std::vector<std::string> lines;
   lines.push_back("gc-litho --texture: speed from the picture at a constant extruder rate (E x old/new speed)");
   lines.push_back(fmt::format("  image = {} ({} x {} pixels)", image_name, image.width(), image.height()));
   lines.push_back(fmt::format("  projection = {}", projection_name(m.projection)));
   const bool round = m.projection == Projection::Cylinder || m.projection == Projection::Sphere;
-  lines.push_back(fmt::format("  center = {} {}{}", mm(m.center_x), mm(m.center_y),
-                              m.projection == Projection::Sphere ? " " + mm(m.center_z) : std::string()));
+  lines.push_back(fmt::format("  center = {} {}{}", number_string(m.center_x, 3), number_string(m.center_y, 3),
+                              m.projection == Projection::Sphere ? " " + number_string(m.center_z, 3) : std::string()));
   if (m.projection != Projection::Sphere && m.projection != Projection::Z)
-    lines.push_back(fmt::format("  bottom = {} mm", mm(m.bottom_z)));
-  lines.push_back(fmt::format("  offset = {} {} mm", mm(m.offset_u), mm(m.offset_v)));
+    lines.push_back(fmt::format("  bottom = {} mm", number_string(m.bottom_z, 3)));
+  lines.push_back(fmt::format("  offset = {} {} mm", number_string(m.offset_u, 3), number_string(m.offset_v, 3)));
   if (projection.width() > 0)
-    lines.push_back(fmt::format("  size = {} x {} mm{}", mm(projection.width()), mm(projection.height()),
-                                round ? " (width: once around)" : ""));
+    lines.push_back(fmt::format("  size = {} x {} mm{}", number_string(projection.width(), 3),
+                                number_string(projection.height(), 3), round ? " (width: once around)" : ""));
   if (speeds.binary) {
-    lines.push_back(fmt::format("  binary = {} (grey below: {} mm/s, above: {} mm/s, ratio {})", mm(speeds.threshold),
-                                mm(speeds.high * speeds.ratio), mm(speeds.high), mm(speeds.ratio)));
+    lines.push_back(fmt::format("  binary = {} (grey below: {} mm/s, above: {} mm/s, ratio {})",
+                                number_string(speeds.threshold, 3), number_string(speeds.high * speeds.ratio, 3),
+                                number_string(speeds.high, 3), number_string(speeds.ratio, 3)));
   } else {
-    lines.push_back(fmt::format("  speed = {} mm/s (black) to {} mm/s (white)", mm(speeds.low), mm(speeds.high)));
+    lines.push_back(fmt::format("  speed = {} mm/s (black) to {} mm/s (white)", number_string(speeds.low, 3),
+                                number_string(speeds.high, 3)));
   }
   if (speeds.invert) lines.push_back("  invert = yes (light = slow)");
-  lines.push_back(fmt::format("  resolution = {} mm", mm(resolution)));
-  if (skip_z > 0) lines.push_back(fmt::format("  skip_z = {} mm", mm(skip_z)));
+  lines.push_back(fmt::format("  resolution = {} mm", number_string(resolution, 3)));
+  if (skip_z > 0) lines.push_back(fmt::format("  skip_z = {} mm", number_string(skip_z, 3)));
   if (!types.empty()) lines.push_back(fmt::format("  types = {}", types));
   return lines;
 }

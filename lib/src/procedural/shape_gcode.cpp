@@ -21,11 +21,6 @@ constexpr double kUnit = 1e-3;  // of X, Y and Z as written
 constexpr int kE = 5;
 constexpr double kLift = 2;     // mm above the path for the travel to its start
 
-std::string num(double v, int decimals = 3) {
-  char b[kMaxNumberChars];
-  return std::string(number_text(v, decimals, b));
-}
-
 double filament_area(const ShapeGcodeOptions& o) {
   return std::numbers::pi * o.filament_diameter * o.filament_diameter / 4;
 }
@@ -99,9 +94,9 @@ class PathWriter {
       feed(options_.travel_speed);
       line(b_.text(words).view());
     };
-    go(" Z" + num(lift_z));
-    go(" X" + num(to.x) + " Y" + num(to.y));
-    go(" Z" + num(to.z));
+    go(" Z" + number_string(lift_z, 3));
+    go(" X" + number_string(to.x, 3) + " Y" + number_string(to.y, 3));
+    go(" Z" + number_string(to.z, 3));
     set_position(to);
     bead_written_ = to.bead;
   }
@@ -116,7 +111,7 @@ class PathWriter {
     const std::int64_t f = to_scaled(mm_per_s * 60, 0);
     if (f == feed_) return;
     feed_ = f;
-    b_.text(" F" + num(static_cast<double>(f), 0));
+    b_.text(" F" + number_string(static_cast<double>(f), 0));
   }
 
   const ShapeGcodeOptions& options_;
@@ -154,19 +149,19 @@ void write_header(const ShapePath& path, const ShapeGcodeOptions& options, const
   const ShapeOptions& o = path.options();
   const double r = path.max_radius();
   w.line(";FLAVOR:Marlin");
-  w.line(fmt::format(";Filament used: {}m", num(totals.filament / 1000, 5)));
-  w.line(fmt::format(";Layer height: {}", num(o.layer_height)));
-  w.line(fmt::format(";MINX:{}", num(o.center_x - r)));
-  w.line(fmt::format(";MINY:{}", num(o.center_y - r)));
-  w.line(fmt::format(";MINZ:{}", num(path.start().z)));
-  w.line(fmt::format(";MAXX:{}", num(o.center_x + r)));
-  w.line(fmt::format(";MAXY:{}", num(o.center_y + r)));
-  w.line(fmt::format(";MAXZ:{}", num(path.top())));
+  w.line(fmt::format(";Filament used: {}m", number_string(totals.filament / 1000, 5)));
+  w.line(fmt::format(";Layer height: {}", number_string(o.layer_height, 3)));
+  w.line(fmt::format(";MINX:{}", number_string(o.center_x - r, 3)));
+  w.line(fmt::format(";MINY:{}", number_string(o.center_y - r, 3)));
+  w.line(fmt::format(";MINZ:{}", number_string(path.start().z, 3)));
+  w.line(fmt::format(";MAXX:{}", number_string(o.center_x + r, 3)));
+  w.line(fmt::format(";MAXY:{}", number_string(o.center_y + r, 3)));
+  w.line(fmt::format(";MAXZ:{}", number_string(path.top(), 3)));
   w.line("");
   w.line(fmt::format(";Generated with gc-shape {}: a {} printed as one seamless path, without a slicer", kVersion,
                      shape_kind_name(o.kind)));
   for (const std::string& p : shape_parameters(path, options)) w.line(";  " + p);
-  w.line(fmt::format(";  moves = {}, extruded path = {} mm", totals.moves, num(totals.length, 1)));
+  w.line(fmt::format(";  moves = {}, extruded path = {} mm", totals.moves, number_string(totals.length, 1)));
 }
 
 void write_start(const ShapePath& path, const ShapeGcodeOptions& options, PathWriter& w) {
@@ -215,25 +210,28 @@ std::vector<std::string> shape_parameters(const ShapePath& path, const ShapeGcod
   std::vector<std::string> p;
   auto add = [&](std::string_view name, const std::string& value) { p.push_back(fmt::format("{} = {}", name, value)); };
   add("shape", std::string(shape_kind_name(o.kind)));
-  add("diameter", num(o.diameter) + " mm (the path's centre line)");
-  if (o.kind == ShapeKind::Cone) add("top_diameter", num(o.top_diameter) + " mm");
-  if (o.kind == ShapeKind::Spiral) add("inner_diameter", num(2 * path.start().x - 2 * o.center_x) + " mm outer, " +
-                                       num(o.inner_diameter > 0 ? o.inner_diameter : 4 * o.line_width) + " mm inner");
+  add("diameter", number_string(o.diameter, 3) + " mm (the path's centre line)");
+  if (o.kind == ShapeKind::Cone) add("top_diameter", number_string(o.top_diameter, 3) + " mm");
+  if (o.kind == ShapeKind::Spiral)
+    add("inner_diameter", number_string(2 * path.start().x - 2 * o.center_x, 3) + " mm outer, " +
+                              number_string(o.inner_diameter > 0 ? o.inner_diameter : 4 * o.line_width, 3) +
+                              " mm inner");
   if (o.kind == ShapeKind::Polygon) add("sides", std::to_string(o.sides));
-  add("height", num(path.top()) + " mm");
-  add("layer_height", num(o.layer_height) + " mm");
-  if (path.turns() > 0) add("pitch", fmt::format("{} mm, {} turns", num(path.pitch(), 6), path.turns()));
+  add("height", number_string(path.top(), 3) + " mm");
+  add("layer_height", number_string(o.layer_height, 3) + " mm");
+  if (path.turns() > 0) add("pitch", fmt::format("{} mm, {} turns", number_string(path.pitch(), 6), path.turns()));
   add("layers", std::to_string(path.layer_count()));
-  add("line_width", num(o.line_width) + " mm");
-  add("cross_section", num(o.line_width * o.layer_height, 5) + " mm2");
-  add("tolerance", num(o.tolerance, 4) + " mm");
-  add("center", num(o.center_x) + "," + num(o.center_y) + " mm");
-  add("speed", num(options.speed) + " mm/s");
-  add("travel_speed", num(options.travel_speed) + " mm/s");
-  add("filament_diameter", num(options.filament_diameter) + " mm");
-  add("nozzle_temp", num(options.nozzle_temp) + " C");
-  add("bed_temp", num(options.bed_temp) + " C");
-  add("retract", num(options.retract_length, 5) + " mm at " + num(options.retract_speed) + " mm/s");
+  add("line_width", number_string(o.line_width, 3) + " mm");
+  add("cross_section", number_string(o.line_width * o.layer_height, 5) + " mm2");
+  add("tolerance", number_string(o.tolerance, 4) + " mm");
+  add("center", number_string(o.center_x, 3) + "," + number_string(o.center_y, 3) + " mm");
+  add("speed", number_string(options.speed, 3) + " mm/s");
+  add("travel_speed", number_string(options.travel_speed, 3) + " mm/s");
+  add("filament_diameter", number_string(options.filament_diameter, 3) + " mm");
+  add("nozzle_temp", number_string(options.nozzle_temp, 3) + " C");
+  add("bed_temp", number_string(options.bed_temp, 3) + " C");
+  add("retract",
+      number_string(options.retract_length, 5) + " mm at " + number_string(options.retract_speed, 3) + " mm/s");
   add("fan", std::to_string(options.fan));
   add("start", options.start_code.empty() ? "built-in Marlin" : (options.start_name.empty() ? "given" : options.start_name));
   add("end", options.end_code.empty() ? "built-in Marlin" : (options.end_name.empty() ? "given" : options.end_name));

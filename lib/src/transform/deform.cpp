@@ -41,11 +41,6 @@ bool finite(const Point3& p) { return std::isfinite(p.x) && std::isfinite(p.y) &
 
 double coordinate(const Point3& p, int axis) { return axis == 0 ? p.x : (axis == 1 ? p.y : p.z); }
 
-std::string mm(double v) {
-  char b[kMaxNumberChars];
-  return std::string(number_text(v, 3, b));
-}
-
 }  // namespace
 
 void DeformOptions::validate() const {
@@ -209,7 +204,8 @@ void Deformer::write(const TrackedLine& t, Emitter& out) {
   if (m.extruding && (jumped_ || (entered_written_ && distance(at, start_image_) > options_.tolerance)) &&
       !options_.force)
     refuse(line_, fmt::format("the deformation jumps: neighbouring points land more than {} mm apart "
-                              "(--force prints it with a travel over the gap)", mm(options_.tolerance)));
+                              "(--force prints it with a travel over the gap)",
+                              number_string(options_.tolerance, 3)));
   if (m.extruding && distance(at, start_image_) > options_.tolerance) travel_to(start_image_, t, out);
   entered_written_ = true;
   double total = 0;  // the image's length, to share the E of a move that pushes no filament forward
@@ -363,17 +359,22 @@ bool Deformer::on_bed(const Point3& p) const {
 
 void Deformer::check_point(const Point3& p, bool extruding) {
   const double tol = options_.tolerance;
-  if (p.z < -tol) refuse(line_, fmt::format("the deformation sends the nozzle below the bed (Z {})", mm(p.z)));
+  if (p.z < -tol)
+    refuse(line_, fmt::format("the deformation sends the nozzle below the bed (Z {})", number_string(p.z, 3)));
   if (options_.has_bed && on_bed_ && !on_bed(p))
-    refuse(line_, fmt::format("the deformation leaves the bed (X {} Y {}; the bed is X {}..{} Y {}..{})", mm(p.x),
-                              mm(p.y), mm(options_.bed.min_x), mm(options_.bed.max_x), mm(options_.bed.min_y),
-                              mm(options_.bed.max_y)));
+    refuse(line_, fmt::format("the deformation leaves the bed (X {} Y {}; the bed is X {}..{} Y {}..{})",
+                              number_string(p.x, 3), number_string(p.y, 3), number_string(options_.bed.min_x, 3),
+                              number_string(options_.bed.max_x, 3), number_string(options_.bed.min_y, 3),
+                              number_string(options_.bed.max_y, 3)));
   if (options_.has_max_z && p.z > options_.max_z + tol)
-    refuse(line_, fmt::format("the deformation goes above the printer's height (Z {} > {})", mm(p.z), mm(options_.max_z)));
+    refuse(line_, fmt::format("the deformation goes above the printer's height (Z {} > {})", number_string(p.z, 3),
+                              number_string(options_.max_z, 3)));
   const double top = printed_.top(p.x, p.y, -std::numeric_limits<double>::infinity());
   if (p.z < top - kDrop - tol && !options_.force)
-    refuse(line_, fmt::format("the deformation sends the nozzle down into what is printed (Z {} at X {} Y {}, "
-                              "printed up to {} there; --force to print it anyway)", mm(p.z), mm(p.x), mm(p.y), mm(top)));
+    refuse(line_,
+           fmt::format("the deformation sends the nozzle down into what is printed (Z {} at X {} Y {}, "
+                       "printed up to {} there; --force to print it anyway)",
+                       number_string(p.z, 3), number_string(p.x, 3), number_string(p.y, 3), number_string(top, 3)));
   if (extruding) printed_.add(p.x, p.y, p.z);
 }
 

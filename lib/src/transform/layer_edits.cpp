@@ -16,16 +16,11 @@ namespace {
 // Heights of layers that are "the same Z" in two slicings of one model.
 constexpr double kSameZ = 0.005;
 
-std::string mm(double v) {
-  char b[kMaxNumberChars];
-  return std::string(number_text(v, 4, b));
-}
-
 bool all_digits(std::string_view s) {
   return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 
-std::string describe(const LayerInfo& l) { return fmt::format("layer {} (Z {})", l.index, mm(l.z)); }
+std::string describe(const LayerInfo& l) { return fmt::format("layer {} (Z {})", l.index, number_string(l.z, 4)); }
 
 }  // namespace
 
@@ -214,11 +209,11 @@ void LayerEditPlan::after_layer(const SpliceContext& context, LayerAction& actio
       b.z_shift = action.shift + h;
       action.shift = b.z_shift;
       b.note = fmt::format("{}{} again ({} of {}) at Z {}", note_, describe(p.info), k, r.times,
-                           mm((z_of(p.info.z) + b.z_shift).to_double()));
+                           number_string((z_of(p.info.z) + b.z_shift).to_double(), 4));
       action.blocks.push_back(std::move(b));
     }
     report_.push_back(fmt::format("{} printed {} more time{}; later layers {} mm up", describe(p.info), r.times,
-                                  r.times > 1 ? "s" : "", mm((h.to_double() * r.times))));
+                                  r.times > 1 ? "s" : "", number_string((h.to_double() * r.times), 4)));
   }
   for (Insert& in : insert_) {
     if (!in.after.contains(p.info, total_)) continue;
@@ -231,12 +226,13 @@ void LayerEditPlan::after_layer(const SpliceContext& context, LayerAction& actio
     const Fixed height = z_of(index.layer(index.layers()).info.z) - bottom;
     SpliceBlock b = layer_index_block(index, 1, index.layers());
     b.z_shift = z_of(p.info.z) + action.shift - bottom;
-    b.note = fmt::format("{}{} ({} layers) on top of {} at Z {}", note_, in.file.name, index.layers(),
-                         describe(p.info), mm((z_of(p.info.z) + action.shift).to_double()));
+    b.note = fmt::format("{}{} ({} layers) on top of {} at Z {}", note_, in.file.name, index.layers(), describe(p.info),
+                         number_string((z_of(p.info.z) + action.shift).to_double(), 4));
     action.shift += height;
     action.blocks.push_back(std::move(b));
     report_.push_back(fmt::format("{} ({} layers, {} mm) inserted after {}; later layers {} mm up", in.file.name,
-                                  index.layers(), mm(height.to_double()), describe(p.info), mm(height.to_double())));
+                                  index.layers(), number_string(height.to_double(), 4), describe(p.info),
+                                  number_string(height.to_double(), 4)));
   }
 }
 
@@ -272,8 +268,9 @@ void LayerEditPlan::skip_layer(const LayerInfo& info, LayerAction& action) {
   } else {
     action.shift -= h;
   }
-  report_.push_back(fmt::format("{} left out{}", describe(info),
-                                keep_z_ ? "" : fmt::format("; later layers {} mm down", mm(h.to_double()))));
+  report_.push_back(
+      fmt::format("{} left out{}", describe(info),
+                  keep_z_ ? "" : fmt::format("; later layers {} mm down", number_string(h.to_double(), 4))));
 }
 
 // The extrusion factor of the first layer printed after --keep-z left
@@ -286,10 +283,11 @@ double LayerEditPlan::fill_scale(const LayerInfo& info) {
   std::string what = fill_first_ == fill_last_ ? fmt::format("layer {}", fill_first_)
                                                 : fmt::format("layers {}-{}", fill_first_, fill_last_);
   if (diag_ != nullptr)
-    diag_->warn(fmt::format("--keep-z: {} printed with {} times its extrusion to fill the {} mm of {} left out: "
-                            "this over-extrudes by design",
-                            describe(info), mm(scale), mm(fill_), what));
-  report_.push_back(fmt::format("{} extrusion x{} (fills {})", describe(info), mm(scale), what));
+    diag_->warn(
+        fmt::format("--keep-z: {} printed with {} times its extrusion to fill the {} mm of {} left out: "
+                    "this over-extrudes by design",
+                    describe(info), number_string(scale, 4), number_string(fill_, 4), what));
+  report_.push_back(fmt::format("{} extrusion x{} (fills {})", describe(info), number_string(scale, 4), what));
   fill_ = 0;
   return scale;
 }
@@ -319,7 +317,8 @@ int LayerEditPlan::replacement_of(Replace& r, const LayerInfo& info) {
         j == 0 ? fmt::format("{} has no layers to replace {} with", r.file.name, describe(info))
                : fmt::format("{} has no layer at Z {} to replace {} with (nearest: layer {} at Z {}); name "
                              "its layers with --with {}:LAYERS",
-                             r.file.name, mm(info.z), describe(info), j, mm(index.layer(j).info.z), r.file.name));
+                             r.file.name, number_string(info.z, 4), describe(info), j,
+                             number_string(index.layer(j).info.z, 4), r.file.name));
   return j;
 }
 
@@ -337,11 +336,14 @@ void LayerEditPlan::replace_layer(Replace& r, const LayerInfo& info, const Splic
     // The fill goes to the block printed in this layer's place.
     b.extrusion_scale = (l.info.height > 0 ? (l.info.height + (scale - 1) * info.height) / l.info.height : scale);
   }
-  b.note = fmt::format("{}{} replaced by layer {} of {} (Z {})", note_, describe(info), j, r.file.name, mm(l.info.z));
+  b.note = fmt::format("{}{} replaced by layer {} of {} (Z {})", note_, describe(info), j, r.file.name,
+                       number_string(l.info.z, 4));
   if (std::fabs(l.info.height - info.height) > 0.01 && diag_ != nullptr)
     diag_->warn(fmt::format("{} is {} mm high, layer {} of {} {} mm: its extrusion is meant for another height",
-                            describe(info), mm(info.height), j, r.file.name, mm(l.info.height)));
-  report_.push_back(fmt::format("{} replaced by layer {} of {} (Z {})", describe(info), j, r.file.name, mm(l.info.z)));
+                            describe(info), number_string(info.height, 4), j, r.file.name,
+                            number_string(l.info.height, 4)));
+  report_.push_back(
+      fmt::format("{} replaced by layer {} of {} (Z {})", describe(info), j, r.file.name, number_string(l.info.z, 4)));
   action.blocks.push_back(std::move(b));
   action.keep = false;
 }
@@ -352,7 +354,7 @@ LayerAction LayerEditPlan::at_end_code(const SpliceContext& context) {
   after_layer(context, action);
   if (fill_ > 0 && diag_ != nullptr)
     diag_->warn(fmt::format("--keep-z: no layer after layer {} takes the extrusion of the {} mm left out", fill_last_,
-                            mm(fill_)));
+                            number_string(fill_, 4)));
   return action;
 }
 

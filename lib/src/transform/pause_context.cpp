@@ -5,15 +5,6 @@
 
 namespace gcode {
 
-namespace {
-
-std::string mm(double v) {
-  char b[kMaxNumberChars];
-  return std::string(number_text(v, 3, b));
-}
-
-}  // namespace
-
 void ParkRules::check() const {
   if (!given && !area.has_bed)
     throw std::runtime_error(
@@ -44,8 +35,10 @@ void ParkRules::place(const PauseContext& context, const Precision& precision, P
   c.park_y = Fixed::from_double(c.park_y).rounded(precision.of('Y')).to_double();
   bool pushes = c.reload > 0 || c.purge > 0 || c.prime > 0;
   if (pushes && !box.empty() && box.contains(c.park_x, c.park_y))
-    throw std::runtime_error("the park position X" + mm(c.park_x) + " Y" + mm(c.park_y) + " is above the print (X " +
-                             mm(box.min_x) + ".." + mm(box.max_x) + ", Y " + mm(box.min_y) + ".." + mm(box.max_y) +
+    throw std::runtime_error("the park position X" + number_string(c.park_x, 3) + " Y" + number_string(c.park_y, 3) +
+                             " is above the print (X " + number_string(box.min_x, 3) + ".." +
+                             number_string(box.max_x, 3) + ", Y " + number_string(box.min_y, 3) + ".." +
+                             number_string(box.max_y, 3) +
                              "): purging there would drop a blob on it; choose --park outside the print");
 }
 

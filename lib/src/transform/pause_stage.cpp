@@ -9,11 +9,6 @@ namespace gcode {
 
 namespace {
 
-std::string mm(double v) {
-  char b[kMaxNumberChars];
-  return std::string(number_text(v, 3, b));
-}
-
 std::string layers_text(int n) { return std::to_string(n) + (n == 1 ? " layer" : " layers"); }
 
 }  // namespace
@@ -61,22 +56,25 @@ void PauseTriggers::verify(int layers, double top_layer_z) const {
                              ", so no pause");
   for (std::size_t i = 0; i < heights.size(); ++i)
     if (i >= height_used_.size() || !height_used_[i])
-      throw std::runtime_error("--z " + mm(heights[i]) + ": no layer starts above that height (the top layer is at Z " +
-                               mm(top_layer_z) + ")");
+      throw std::runtime_error("--z " + number_string(heights[i], 3) +
+                               ": no layer starts above that height (the top layer is at Z " +
+                               number_string(top_layer_z, 3) + ")");
 }
 
 void PauseTriggers::check_heights(const PrintArea& area) const {
   if (!area.has_print_top) return;
   for (double h : heights)
     if (h >= area.print_top)
-      throw std::runtime_error("--z " + mm(h) + ": the print is only " + mm(area.print_top) + " mm high");
+      throw std::runtime_error("--z " + number_string(h, 3) + ": the print is only " +
+                               number_string(area.print_top, 3) + " mm high");
 }
 
 std::string pause_table(const std::vector<PlacedPause>& pauses) {
   std::string out = "# layer\tz\tline\tpark\n";
   for (const PlacedPause& p : pauses)
-    out += (p.layer > 0 ? std::to_string(p.layer) : std::string("end")) + "\t" + mm(p.z) + "\t" + std::to_string(p.line) +
-           "\tX" + mm(p.park_x) + " Y" + mm(p.park_y) + " Z" + mm(p.park_z) + "\n";
+    out += (p.layer > 0 ? std::to_string(p.layer) : std::string("end")) + "\t" + number_string(p.z, 3) + "\t" +
+           std::to_string(p.line) + "\tX" + number_string(p.park_x, 3) + " Y" + number_string(p.park_y, 3) + " Z" +
+           number_string(p.park_z, 3) + "\n";
   return out;
 }
 
@@ -115,7 +113,7 @@ void PauseStage::pause(int layer, double z, std::uint64_t line, const MachineSta
   } catch (const std::runtime_error& e) {
     throw std::runtime_error("line " + std::to_string(line) + ": " + e.what());
   }
-  Placeholders values{{"layer", layer > 0 ? std::to_string(layer) : std::string("end")}, {"z", mm(z)}};
+  Placeholders values{{"layer", layer > 0 ? std::to_string(layer) : std::string("end")}, {"z", number_string(z, 3)}};
   for (std::string* text : {&c.message, &c.host_message, &c.before_wait, &c.after_wait, &c.custom_wait})
     *text = expand_placeholders(*text, values);
   PauseBlock block;
@@ -126,9 +124,9 @@ void PauseStage::pause(int layer, double z, std::uint64_t line, const MachineSta
   }
   pauses_.push_back(PlacedPause{layer, z, line, c.park_x, c.park_y, block.park_z});
   std::string where = layer > 0 ? "before layer " + std::to_string(layer) : std::string("after the last layer");
-  diag_.info("pause " + where + " (Z " + mm(z) + ") at line " + std::to_string(line));
+  diag_.info("pause " + where + " (Z " + number_string(z, 3) + ") at line " + std::to_string(line));
   if (dry_run_) return;
-  out.insert("; " + note_ + "pause " + where + " (Z " + mm(z) + ")");
+  out.insert("; " + note_ + "pause " + where + " (Z " + number_string(z, 3) + ")");
   for (const std::string& l : block.pause) out.insert(l);
   out.insert("; " + note_ + "resume");
   for (const std::string& l : block.resume) out.insert(l);

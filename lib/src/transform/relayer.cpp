@@ -13,11 +13,6 @@ namespace gcode {
 
 namespace {
 
-std::string mm(double v) {
-  char b[kMaxNumberChars];
-  return std::string(number_text(v, 4, b));
-}
-
 double height_of(const LayerIndex& index, int k) {
   const LayerInfo& l = index.layer(k).info;
   if (l.height > 0) return l.height;
@@ -39,10 +34,10 @@ Join choose_join(LayerIndex& next, double printed_z, int z_decimals, double tole
   for (int i = 1; i <= next.layers() && k == 0; ++i)
     if (next.layer(i).info.z > printed_z + 1e-6) k = i;
   if (k == 0)
-    throw std::runtime_error(next.layers() == 0
-                                 ? fmt::format("{} has no layers", next.name())
-                                 : fmt::format("{} has no layer above Z {} (its last is at Z {})", next.name(),
-                                               mm(printed_z), mm(next.layer(next.layers()).info.z)));
+    throw std::runtime_error(next.layers() == 0 ? fmt::format("{} has no layers", next.name())
+                                                : fmt::format("{} has no layer above Z {} (its last is at Z {})",
+                                                              next.name(), number_string(printed_z, 4),
+                                                              number_string(next.layer(next.layers()).info.z, 4)));
   Join join;
   const Fixed printed = Fixed::from_double(printed_z).rounded(zd);
   for (;;) {
@@ -111,7 +106,7 @@ LayerAction RelayerPlan::at_layer(const LayerInfo& info, const SpliceContext& co
   }
   if (last_.index == 0)
     throw std::runtime_error(options_.at_z ? fmt::format("--at-z {}: the input's first layer is higher (Z {})",
-                                                         mm(*options_.at_z), mm(info.z))
+                                                         number_string(*options_.at_z, 4), number_string(info.z, 4))
                                            : std::string("--at-layer: the input has no such layer"));
   return join(context);
 }
@@ -133,12 +128,12 @@ void warn_if_uneven(const LayerIndex& next, const Join& j, Diagnostics* diag) {
   if (diag == nullptr) return;
   auto uneven = [](double scale) { return scale < 0.5 || scale > 1.5; };
   if (uneven(j.first_scale))
-    diag->warn(fmt::format("{} layer {} is printed with its extrusion x{} at the join: the seam may show",
-                           next.name(), j.first, mm(j.first_scale)));
+    diag->warn(fmt::format("{} layer {} is printed with its extrusion x{} at the join: the seam may show", next.name(),
+                           j.first, number_string(j.first_scale, 4)));
   for (const JoinStep& s : j.fills)
     if (uneven(s.scale))
       diag->warn(fmt::format("{} layer {} fills the gap with its extrusion x{}: the seam may show", next.name(),
-                             s.layer, mm(s.scale)));
+                             s.layer, number_string(s.scale, 4)));
 }
 
 }  // namespace
@@ -160,22 +155,23 @@ JoinBlocks join_blocks(LayerIndex& next, double printed_z, int z_decimals, const
     b.z_shift = s.z_shift;
     b.extrusion_scale = s.scale;
     const double at = next.layer(s.layer).info.z + s.z_shift.to_double();
-    b.note = fmt::format("{}layer {} of {} at Z {}, extrusion x{}: the height missing under its layer {}",
-                         note_prefix, s.layer, next.name(), mm(at), mm(s.scale), s.layer);
+    b.note = fmt::format("{}layer {} of {} at Z {}, extrusion x{}: the height missing under its layer {}", note_prefix,
+                         s.layer, next.name(), number_string(at, 4), number_string(s.scale, 4), s.layer);
     out.report.push_back(fmt::format("{} layer {} printed first at Z {} with its extrusion x{} (the missing {} mm)",
-                                     next.name(), s.layer, mm(at), mm(s.scale),
-                                     mm(s.scale * height_of(next, s.layer))));
+                                     next.name(), s.layer, number_string(at, 4), number_string(s.scale, 4),
+                                     number_string(s.scale * height_of(next, s.layer), 4)));
     out.blocks.push_back(std::move(b));
   }
   SpliceBlock rest = layer_index_block(next, j.first, j.first, true);
   rest.extrusion_scale = j.first_scale;
   const LayerInfo& f = next.layer(j.first).info;
   rest.note = fmt::format("{}{} from its layer {} (Z {}) on, joined onto {}", note_prefix, next.name(), j.first,
-                          mm(f.z), onto);
-  out.report.push_back(fmt::format("{} goes on from its layer {} (Z {}) to its end", next.name(), j.first, mm(f.z)));
+                          number_string(f.z, 4), onto);
+  out.report.push_back(
+      fmt::format("{} goes on from its layer {} (Z {}) to its end", next.name(), j.first, number_string(f.z, 4)));
   if (j.first_scale != 1)
     out.report.push_back(fmt::format("{} layer {} overlaps the print: its extrusion x{}", next.name(), j.first,
-                                     mm(j.first_scale)));
+                                     number_string(j.first_scale, 4)));
   warn_if_uneven(next, j, diag);
   out.blocks.push_back(std::move(rest));
   return out;
@@ -185,9 +181,9 @@ LayerAction RelayerPlan::join(const SpliceContext& context) {
   joined_ = true;
   const double printed = last_.z + context.shift.to_double();
   JoinBlocks j = join_blocks(next_, printed, options_.z_decimals, context.extent,
-                             fmt::format("the input's layer {} (Z {})", last_.index, mm(last_.z)),
+                             fmt::format("the input's layer {} (Z {})", last_.index, number_string(last_.z, 4)),
                              options_.note_prefix, diag_);
-  report_.push_back(fmt::format("the input's layers 1-{} (to Z {}) are kept", last_.index, mm(last_.z)));
+  report_.push_back(fmt::format("the input's layers 1-{} (to Z {}) are kept", last_.index, number_string(last_.z, 4)));
   report_.insert(report_.end(), j.report.begin(), j.report.end());
   LayerAction a;
   a.leave = true;
@@ -213,12 +209,13 @@ LayerAction ResumePlan::at_layer(const LayerInfo& info, const SpliceContext& con
   first_ = info;
   a.lead_in = lead_in(info, *context.main);
   a.printed_top = options_.z;
-  a.note = fmt::format("{}layer {} (Z {}) on", options_.note_prefix, info.index, mm(info.z));
-  report_.push_back(fmt::format("resuming at layer {} (Z {}) on a part measured at Z {}", info.index, mm(info.z),
-                                mm(options_.z)));
+  a.note = fmt::format("{}layer {} (Z {}) on", options_.note_prefix, info.index, number_string(info.z, 4));
+  report_.push_back(fmt::format("resuming at layer {} (Z {}) on a part measured at Z {}", info.index,
+                                number_string(info.z, 4), number_string(options_.z, 4)));
   if (info.z - options_.z > 2 * (info.height > 0 ? info.height : 0.2) + kJoinTolerance && diag_ != nullptr)
     diag_->warn(fmt::format("layer {} (Z {}) is {} mm above the measured Z {}: check the height", info.index,
-                            mm(info.z), mm(info.z - options_.z), mm(options_.z)));
+                            number_string(info.z, 4), number_string(info.z - options_.z, 4),
+                            number_string(options_.z, 4)));
   return a;
 }
 
@@ -227,7 +224,7 @@ LayerAction ResumePlan::at_end_code(const SpliceContext& context) {
     throw std::runtime_error(last_skipped_.index == 0
                                  ? std::string("the file has no layers")
                                  : fmt::format("nothing to resume: the file's last layer is at Z {}, at or below {}",
-                                               mm(last_skipped_.z), mm(options_.z)));
+                                               number_string(last_skipped_.z, 4), number_string(options_.z, 4)));
   LayerAction a;
   a.shift = context.shift;
   return a;
@@ -239,7 +236,7 @@ std::vector<std::string> ResumePlan::lead_in(const LayerInfo& info, const Stream
   std::vector<std::string> lines;
   LineBuilder b;
   lines.push_back(fmt::format("; {}resume at layer {} (Z {}) of a part measured at Z {}", o.note_prefix, info.index,
-                              mm(info.z), mm(o.z)));
+                              number_string(info.z, 4), number_string(o.z, 4)));
   // Heat first, the bed before the nozzle, and wait: the part stays stuck
   // and nothing moves cold.
   using Kind = CarriedSettings::Kind;
@@ -284,9 +281,10 @@ std::vector<std::string> ResumePlan::lead_in(const LayerInfo& info, const Stream
       y = o.area.bed.min_y + 5;
     }
     if (o.area.has_print_box && o.area.print_box.contains(x, y))
-      throw std::runtime_error(fmt::format("the purge position X{} Y{} is above the part: give --purge-at X,Y away "
-                                           "from it",
-                                           mm(x), mm(y)));
+      throw std::runtime_error(
+          fmt::format("the purge position X{} Y{} is above the part: give --purge-at X,Y away "
+                      "from it",
+                      number_string(x, 4), number_string(y, 4)));
     b.start("G1").word('X', x, 3).word('Y', y, 3).word('F', o.travel_speed * 60, 0);
     lines.emplace_back(b.view());
     const Fixed amount = Fixed::from_double(o.purge).rounded(ed);

@@ -57,11 +57,6 @@ std::string number(Fixed v, int decimals) {
   return std::string(buffer, v.format(decimals, buffer));
 }
 
-std::string number(double v, int decimals) {
-  char buffer[kMaxNumberChars];
-  return std::string(number_text(v, decimals, buffer));
-}
-
 }  // namespace
 
 M220Restore m220_restore_for_flavor(std::string_view flavor) {
@@ -82,7 +77,8 @@ void SpeedOptions::validate() const {
   if (!std::isfinite(filament_diameter) || filament_diameter <= 0)
     throw std::invalid_argument("--filament-diameter must be a diameter in mm above 0");
   if (max_speed > 0 && min_speed > max_speed)
-    throw std::invalid_argument("--min-speed " + number(min_speed, 3) + " is above --max-speed " + number(max_speed, 3));
+    throw std::invalid_argument("--min-speed " + number_string(min_speed, 3) + " is above --max-speed " +
+                                number_string(max_speed, 3));
   if ((speed > 0) + ramp > 1) throw std::invalid_argument("choose one change: --factor, --speed or --ramp");
   if (m220) {
     if (speed > 0) throw std::invalid_argument("--m220 sets a percentage of the file's speeds; it cannot give --speed");
@@ -115,7 +111,7 @@ void SpeedStage::set_factor(Fixed factor) {
   if (options_.mark.empty()) return;
   note_.assign(options_.mark);
   if (options_.speed > 0) {
-    note_.append(" ").append(number(options_.speed, 3)).append("mm/s");
+    note_.append(" ").append(number_string(options_.speed, 3)).append("mm/s");
   } else {
     note_.append(" x").append(number(factor, kNoteDecimals));
   }

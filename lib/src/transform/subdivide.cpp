@@ -34,11 +34,6 @@ int axis_of(char letter) {
   }
 }
 
-std::string format_mm(double v) {
-  char buffer[kMaxNumberChars];
-  return std::string(number_text(v, 3, buffer));
-}
-
 }  // namespace
 
 void SubdivideOptions::validate() const {
@@ -52,7 +47,8 @@ void SubdivideOptions::validate() const {
   if (buffer < 1) throw std::invalid_argument("--buffer must be at least 1");
   if (max_length > 0 && latency > 0) throw std::invalid_argument("choose one limit: --max or --latency, not both");
   if (max_length > 0 && max_length < 2 * min_length)
-    throw std::invalid_argument("--max " + format_mm(max_length) + " is below twice --min " + format_mm(min_length) +
+    throw std::invalid_argument("--max " + number_string(max_length, 3) + " is below twice --min " +
+                                number_string(min_length, 3) +
                                 ": a move just over the limit is cut in two pieces of half the limit, which "
                                 "would be shorter than --min; lower --min");
 }
@@ -287,9 +283,8 @@ double Subdivider::plan_arc(const TrackedLine& t, Plan& plan, double limit, doub
 void Subdivider::warn_rate_once(const TrackedLine& t, double limit) {
   if (warned_rate_ || diagnostics_ == nullptr) return;
   warned_rate_ = true;
-  char buffer[kMaxNumberChars];
-  diagnostics_->warn(t.raw.number, "--max-rate asks for pieces of " + std::string(number_text(limit, 3, buffer)) +
-                                       " mm at F" + std::string(number_text(t.move.feedrate, 0, buffer)) +
+  diagnostics_->warn(t.raw.number, "--max-rate asks for pieces of " + number_string(limit, 3) + " mm at F" +
+                                       number_string(t.move.feedrate, 0) +
                                        ", longer than the limit; honouring the rate (warned once)");
 }
 

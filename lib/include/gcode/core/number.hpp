@@ -10,6 +10,7 @@
 // goes through a scaled integer, which is both fast and free of binary noise.
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -45,5 +46,9 @@ std::size_t format_scaled(std::int64_t units, int decimals, char* out);
 
 // Convenience for tests and messages.
 std::string_view number_text(double value, int decimals, char (&buffer)[kMaxNumberChars]);
+
+// The text format_number writes, as a string: the one way messages and
+// generated G-code spell a millimetre, a speed or a factor ("0.2", "12").
+std::string number_string(double value, int decimals);
 
 }  // namespace gcode
