@@ -40,17 +40,25 @@ const std::string kPrinter = "--time-scale 200 --heat-rate 1000 ";
 
 }  // namespace
 
-TEST_CASE("gc-send: a printer reset mid-layer, at a layer change or in the start code comes back and finishes",
+TEST_CASE("gc-send: a printer reset mid-layer, at a layer change or in the start code comes back and finishes, its greeting whole or after a cut line",
           "[gc-send][reset]") {
   auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
   struct Moment {
     const char* fault;
+    const char* greeting;
     const char* says;
   };
-  for (Moment m : {Moment{"reset@line=3000", "going back to line "}, Moment{"reset@layer=2", "going back to line "},
-                   Moment{"reset@line=4", "before anything was printed; starting the print again"}}) {
-    PtyRun r = send_through_pty(pieces_file(), "--no-journal", kPrinter + "--fault " + m.fault);
-    INFO(m.fault << ": " << r.result.err);
+  // "cut": the board resets while it sends an ok, its greeting follows the
+  // half that went out ("ostart"); early in the print the printer's
+  // "Resend: 1" is no sign of a reset, only the greeting is.
+  for (Moment m : {Moment{"reset@line=3000", "start", "going back to line "},
+                   Moment{"reset@layer=2", "start", "going back to line "},
+                   Moment{"reset@line=4", "start", "before anything was printed; starting the print again"},
+                   Moment{"reset@line=4", "cut", "before anything was printed; starting the print again"},
+                   Moment{"reset@line=3000", "cut", "going back to line "}}) {
+    PtyRun r = send_through_pty(pieces_file(), "--no-journal",
+                                kPrinter + "--fault " + m.fault + " --greeting " + m.greeting);
+    INFO(m.fault << " " << m.greeting << ": " << r.result.err);
     REQUIRE(r.result.status == 0);
     CHECK(r.result.err.find("the printer reset (it said \"start\")") != std::string::npos);
     CHECK(r.result.err.find(m.says) != std::string::npos);
@@ -67,7 +75,7 @@ TEST_CASE("gc-send: a printer reset mid-layer, at a layer change or in the start
 TEST_CASE("gc-send: each form of the greeting is a reset, an absolute-E print gets its E back exactly",
           "[gc-send][reset]") {
   auto expected = gctest::commands_of(gctest::read_file(absolute_file()));
-  for (const char* greeting : {"nul", "twice", "external"}) {
+  for (const char* greeting : {"nul", "twice", "external", "cut"}) {
     PtyRun r = send_through_pty(absolute_file(), "--no-journal",
                                 kPrinter + "--greeting " + greeting + " --fault reset@line=4000");
     INFO(greeting << ": " << r.result.err);

@@ -214,6 +214,27 @@ TEST_CASE("protocol: Klipper's, Prusa's and RepRapFirmware's answers, and a gree
   CHECK(parse_response(std::string("\0start", 6)).kind == ResponseKind::Start);
 }
 
+TEST_CASE("protocol: a line the board's reset cut short, its greeting right after, is the greeting",
+          "[serial][protocol]") {
+  // What went out of the line it was sending, then "start": the ok must not
+  // count, and the reset must not pass unseen.
+  for (const char* cut : {"okstart", "ok N12 Pstart", "ok N12 P15 B3start", "ok T:20start", "echo:busy:start",
+                          "T:201.2 /210.0 B:6start", "Resend: 1start", "Error:checkstart", "ostart"}) {
+    Response r = parse_response(cut);
+    INFO(cut);
+    CHECK(r.kind == ResponseKind::Start);
+    CHECK(r.text == "start");
+    CHECK(is_restart_line(cut));
+  }
+  // Whole lines that end so are not.
+  CHECK(parse_response("//action:start").kind == ResponseKind::Action);
+  CHECK(parse_response("// action:start").kind == ResponseKind::Action);
+  CHECK(parse_response("echo:Please restart").kind == ResponseKind::Echo);
+  CHECK(parse_response("Restart").kind == ResponseKind::Unknown);
+  CHECK(parse_response("ok").kind == ResponseKind::Ok);
+  CHECK(!is_restart_line("echo:Please RESTART"));
+}
+
 TEST_CASE("protocol: the firmware's name from Klipper's, Prusa's and RepRapFirmware's M115", "[serial][protocol]") {
   FirmwareInfo k;
   CHECK(read_capability("ok FIRMWARE_NAME:Klipper FIRMWARE_VERSION:v0.12.0-253-g1e3d9aaf", k).names_firmware);

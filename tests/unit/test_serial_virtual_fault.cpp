@@ -138,6 +138,24 @@ TEST_CASE("virtual printer: the greeting of a reset in each form", "[serial][vir
   REQUIRE(external.size() == 3);
   CHECK(external[0] == "start");
   CHECK(external[1] == "echo: External Reset");
+  // The line sent last ("start", the boot greeting of the first answers
+  // call), cut to its first half ("sta"), the greeting straight after.
+  CHECK(greeting(GreetingForm::CutLine) == std::vector<std::string>{"stastart"});
+}
+
+TEST_CASE("virtual printer: a reset cuts the ok it was sending", "[serial][virtual_fault]") {
+  VirtualPrinterConfig c;
+  c.greeting = GreetingForm::CutLine;
+  c.advanced_ok = true;
+  VirtualPrinter p(c);
+  answers(p, 0.5);
+  p.receive("M110 N0\n", 0.5);
+  std::vector<std::string> ok = answers(p, 1);
+  REQUIRE(ok.size() == 1);
+  INFO(ok[0]);
+  REQUIRE(ok[0].rfind("ok P", 0) == 0);
+  p.reset(1);
+  CHECK(answers(p, 2) == std::vector<std::string>{ok[0].substr(0, (ok[0].size() + 1) / 2) + "start"});
 }
 
 TEST_CASE("virtual printer: during a link drop the board runs on, silent, afterwards it expects the next line",

@@ -69,7 +69,8 @@ int main(int argc, char** argv) {
   std::string greeting = "start";
   app.add_option("--greeting", greeting,
                  "How the board greets after a reset: start, nul (a NUL before start), twice (start twice), "
-                 "external (start, echo: External Reset, the firmware line); default start")
+                 "external (start, echo: External Reset, the firmware line), cut (start right after the first half of "
+                 "the line it was sending); default start")
       ->type_name("FORM");
   app.add_option("--drop-seconds", o.drop_seconds,
                  "How long a link drop fired by SIGUSR2 lasts, in simulated seconds (default 5); SIGUSR1 "

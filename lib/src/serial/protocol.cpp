@@ -32,6 +32,24 @@ std::string_view trim(std::string_view s) {
 
 bool is_digit(char c) { return c >= '0' && c <= '9'; }
 
+bool ends_with(std::string_view s, std::string_view tail) {
+  return s.size() >= tail.size() && s.substr(s.size() - tail.size()) == tail;
+}
+
+// A board that resets while it is sending a line cuts it: the bytes that
+// went out are followed by its greeting on the same line ("okstart",
+// "ok N12 Pstart", "echo:busy:start"). Read as the greeting, or the reset
+// would pass unseen. Not "restart" in a message, nor Marlin's host action
+// "//action:start" said whole.
+constexpr std::string_view kGreeting = "start";
+
+bool cut_by_greeting(std::string_view s) {
+  if (s.size() <= kGreeting.size() || !ends_with(s, kGreeting)) return false;
+  std::string_view before = s.substr(0, s.size() - kGreeting.size());
+  if (ends_with(before, "re") || ends_with(before, "Re") || ends_with(before, "RE")) return false;
+  return !starts_with_nocase(s, "//action:start") && !starts_with_nocase(s, "// action:start");
+}
+
 // Blanks around a command, and the CR of a CRLF line; not other control
 // bytes: a line that holds them is junk, and the sender must see it whole.
 std::string_view trim_command(std::string_view s) {
@@ -157,6 +175,11 @@ Response parse_response(std::string_view raw) {
   std::string_view s = trim(raw);
   r.text = s;
   if (s.empty()) return r;
+  if (cut_by_greeting(s)) {
+    r.kind = ResponseKind::Start;
+    r.text = s.substr(s.size() - kGreeting.size());
+    return r;
+  }
 
   if (starts_with_nocase(s, "ok") && (s.size() == 2 || s[2] == ' ' || s[2] == ':' || is_digit(s[2]))) {
     r.kind = ResponseKind::Ok;

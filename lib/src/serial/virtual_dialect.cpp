@@ -21,7 +21,8 @@ std::vector<std::string> ReplyDialect::restart_greeting(GreetingForm form) const
     case GreetingForm::NulStart: return {std::string("\0start", 6)};
     case GreetingForm::Twice: return {"start", "start"};
     case GreetingForm::ExternalReset: return {"start", "echo: External Reset", "Marlin 2.1.2 (gc-virtual-printer)"};
-    case GreetingForm::Start: break;
+    case GreetingForm::Start:
+    case GreetingForm::CutLine: break;  // the printer puts the cut line before it
   }
   return {"start"};
 }

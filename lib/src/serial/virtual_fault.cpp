@@ -58,8 +58,9 @@ GreetingForm parse_greeting_form(std::string_view text) {
   if (text == "nul") return GreetingForm::NulStart;
   if (text == "twice") return GreetingForm::Twice;
   if (text == "external") return GreetingForm::ExternalReset;
+  if (text == "cut") return GreetingForm::CutLine;
   throw std::invalid_argument(
-      fmt::format("virtual printer greeting '{}': expected start, nul, twice or external", text));
+      fmt::format("virtual printer greeting '{}': expected start, nul, twice, external or cut", text));
 }
 
 bool FaultSchedule::take_if(ScheduledFault& fault, bool (*due)(const ScheduledFault&, double, double), double a,

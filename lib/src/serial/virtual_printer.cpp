@@ -38,6 +38,7 @@ void VirtualPrinter::send(std::string_view text) {
   if (silent_ || halted_ || link_down_) return;
   stats_.tx_bytes += text.size() + 1;
   wire_.transmit(text, now_);
+  last_sent_.assign(text);
 }
 
 bool VirtualPrinter::heated() const {

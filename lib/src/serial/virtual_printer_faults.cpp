@@ -3,6 +3,8 @@
 // is gone.
 #include <limits>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -50,7 +52,14 @@ void VirtualPrinter::reset(double t) {
   shutdown_ = own_paused_ = false;
   // The part is still on the bed: the layer count (the printer's own view
   // of heights) goes on.
-  for (const std::string& line : dialect_->restart_greeting(config_.greeting)) send(line);
+  std::vector<std::string> greeting = dialect_->restart_greeting(config_.greeting);
+  if (config_.greeting == GreetingForm::CutLine && !greeting.empty() && !link_down_) {
+    // The first half of the line it was sending, the greeting straight after.
+    std::string_view cut = std::string_view(last_sent_).substr(0, (last_sent_.size() + 1) / 2);
+    stats_.tx_bytes += cut.size();
+    wire_.transmit_bytes(cut, now_);
+  }
+  for (const std::string& line : greeting) send(line);
 }
 
 void VirtualPrinter::drop_link(double t, double seconds, bool reset_after) {

@@ -27,9 +27,13 @@ char VirtualWire::arrive() {
 }
 
 void VirtualWire::transmit(std::string_view line, double now) {
-  out_.append(line);
-  out_ += '\n';
-  out_free_at_ = std::max(out_free_at_, now) + static_cast<double>(line.size() + 1) * byte_time_;
+  transmit_bytes(line, now);
+  transmit_bytes("\n", now);
+}
+
+void VirtualWire::transmit_bytes(std::string_view bytes, double now) {
+  out_.append(bytes);
+  out_free_at_ = std::max(out_free_at_, now) + static_cast<double>(bytes.size()) * byte_time_;
 }
 
 std::string_view VirtualWire::transmitted(double now) const {

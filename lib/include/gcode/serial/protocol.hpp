@@ -60,7 +60,8 @@ struct Response {
 // not recognised is Unknown, and the caller logs it.
 Response parse_response(std::string_view line);
 // Whether a line says the board has just restarted: its greeting ("start",
-// or "\0start" from the byte a USB chip sends as it comes up) or Marlin's
+// "\0start" from the byte a USB chip sends as it comes up, or a line the
+// reset cut short with the greeting after it: "ok N12 Pstart") or Marlin's
 // boot note of why ("echo: External Reset", "Watchdog Reset", ...).
 bool is_restart_line(std::string_view line);
 bool is_reset_note(std::string_view text);

@@ -33,13 +33,14 @@ struct ScheduledFault {
 
 // How a restarted board greets: Marlin's "start"; with the NUL a USB-serial
 // chip often puts before it; "start" twice (a bootloader's restart);
-// "start" then "echo: External Reset" and the firmware line.
-enum class GreetingForm : std::uint8_t { Start, NulStart, Twice, ExternalReset };
+// "start" then "echo: External Reset" and the firmware line; "start" right
+// after the first half of the line the board was sending (the reset cut it).
+enum class GreetingForm : std::uint8_t { Start, NulStart, Twice, ExternalReset, CutLine };
 
 // Parses one fault ("drop=5@line=120"). Throws std::invalid_argument naming
 // what is wrong.
 ScheduledFault parse_scheduled_fault(std::string_view text);
-// "start", "nul", "twice", "external". Throws std::invalid_argument.
+// "start", "nul", "twice", "external", "cut". Throws std::invalid_argument.
 GreetingForm parse_greeting_form(std::string_view text);
 
 // The faults still to come, each fired once.

@@ -193,6 +193,7 @@ class VirtualPrinter {
   double now_ = 0;               // the time of the event being processed
 
   VirtualWire wire_;
+  std::string last_sent_;       // the line sent last (a reset may cut it: GreetingForm::CutLine)
   std::string rx_;              // the RX ring buffer (front = oldest)
   std::size_t rx_head_ = 0;
   std::string partial_;         // the line being read out of the RX buffer

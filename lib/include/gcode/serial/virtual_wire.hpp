@@ -29,6 +29,8 @@ class VirtualWire {
   // Printer to host: a line (the newline added) starts after what is still
   // going out, no earlier than `now`.
   void transmit(std::string_view line, double now);
+  // Bytes without a newline: the start of a line a reset cut short.
+  void transmit_bytes(std::string_view bytes, double now);
   // Bytes fully sent by `now`; the host takes them with take(n).
   std::string_view transmitted(double now) const;
   void take(std::size_t n);
