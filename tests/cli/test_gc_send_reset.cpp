@@ -205,7 +205,7 @@ TEST_CASE("gc-send --resume after kill -9 and a printer reset: back to the print
   CHECK(require_resumed(gctest::read_file(dir + "/executed.log"), expected).resets == 1);
 }
 
-TEST_CASE("gc-send --resume after kill -9, and the printer resets during the resumed print: it comes back again",
+TEST_CASE("gc-send --resume after kill -9: a reset in the resumed print comes back too",
           "[gc-send][reset][resume]") {
   auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
   // (The resumed gc-send runs in the background meanwhile: `then` starts a
