@@ -11,6 +11,7 @@
 #include "gcode/core/placeholders.hpp"
 #include "gcode/core/text.hpp"
 #include "gcode/transform/custom_gcode.hpp"
+#include "gcode/transform/transition.hpp"
 #include "gcode/serial/event_loop.hpp"
 #include "gcode/serial/protocol.hpp"
 
@@ -27,11 +28,6 @@ SpeedOptions speed_options(double factor, bool travel, const PrintControlConfig&
   o.filament_diameter = c.filament_diameter;
   o.mark.clear();  // comments do not reach the printer
   return o;
-}
-
-std::string exact(Fixed v) {
-  char buffer[kMaxNumberChars];
-  return std::string(buffer, v.format(Fixed::kDecimals, buffer));
 }
 
 // What a block without a park position did: `note` (ParkRules::place_or_lift)
@@ -329,41 +325,37 @@ void PrintControl::track(std::string_view text, MachineState& state) const {
 }
 
 // Lines that take the printer from `from` (where the commands typed while
-// paused left it) back to `to` (where the resume starts): the same modes, E
-// coordinate, temperature, feed rate, and position reached at a safe height.
+// paused left it) back to `to` (where the resume starts): the position
+// reached at a safe height, then the same modes, E coordinate, hot-end
+// temperatures and feed rate. Transition's steps, in the put-back's order:
+// the bed is left as the user set it, a hot end only where it has a target.
 std::vector<std::string> PrintControl::put_back(const MachineState& from, const MachineState& to) const {
   std::vector<std::string> out;
-  MachineState now = from;
-  auto emit = [&](std::string line) {
-    track(line, now);
-    out.push_back(std::move(line));
-  };
+  TransitionMoves moves;
+  moves.lift = config_.pause.lift;
+  moves.z_feed = config_.pause.z_speed * 60;
+  moves.xy_feed = config_.pause.travel_speed * 60;
+  moves.g0 = false;
+  Transition t(from, precision_, out, moves);
   bool moved = false;
   for (int a : {kX, kY, kZ})
-    if (to.known[static_cast<std::size_t>(a)] && now.at(a) != to.at(a)) moved = true;
-  const int fd = precision_.of('F');
+    if (to.known[static_cast<std::size_t>(a)] && from.at(a) != to.at(a)) moved = true;
   if (moved) {
-    if (now.relative_xyz) emit("G90");
-    Fixed high = std::max({now.at(kZ), to.at(kZ), Fixed::from_double(printed_.top_z() + config_.pause.lift)});
-    char b[kMaxNumberChars];
-    std::string zf(number_text(config_.pause.z_speed * 60, fd, b));
-    std::string xyf(number_text(config_.pause.travel_speed * 60, fd, b));
-    if (high != now.at(kZ)) emit("G1 Z" + exact(high) + " F" + zf);
-    emit("G1 X" + exact(to.at(kX)) + " Y" + exact(to.at(kY)) + " F" + xyf);
-    if (high != to.at(kZ)) emit("G1 Z" + exact(to.at(kZ)) + " F" + zf);
+    t.positioning(false);
+    const Fixed high = std::max({from.at(kZ), to.at(kZ), t.safe_z(Fixed::from_double(printed_.top_z()))});
+    if (high != from.at(kZ)) t.move_z(high);
+    t.move_xy(to.at(kX), to.at(kY));
+    if (high != to.at(kZ)) t.move_z(to.at(kZ));
   }
-  if (now.relative_xyz != to.relative_xyz) emit(to.relative_xyz ? "G91" : "G90");
-  if (now.relative_e != to.relative_e) emit(to.relative_e ? "M83" : "M82");
-  if (now.at(kE) != to.at(kE)) emit("G92 E" + exact(to.at(kE)));
-  for (std::size_t t = 0; t < to.hotend_target.size(); ++t) {
-    if (now.hotend_target[t] == to.hotend_target[t] || to.hotend_target[t] <= 0) continue;
-    LineBuilder b;
-    b.start("M109");
-    if (static_cast<int>(t) != now.tool) b.word('T', static_cast<double>(t), 0);
-    b.word(now.hotend_target[t] > to.hotend_target[t] ? 'R' : 'S', to.hotend_target[t], 1);
-    emit(std::string(b.view()));
+  t.positioning(to.relative_xyz);
+  t.e_mode(to.relative_e);
+  t.e_coordinate(to.at(kE));
+  for (std::size_t h = 0; h < to.hotend_target.size(); ++h) {
+    const double target = to.hotend_target[h];
+    if (t.printer().hotend_target[h] == target || target <= 0) continue;
+    t.hotend(static_cast<int>(h), target, true, static_cast<int>(h) != t.printer().tool);
   }
-  if (to.feedrate > 0 && now.feedrate != to.feedrate) emit("G1 F" + exact(Fixed::from_double(to.feedrate)));
+  t.feed_rate(to.feedrate);
   return out;
 }
 
