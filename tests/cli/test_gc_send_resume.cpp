@@ -302,8 +302,10 @@ TEST_CASE("gc-send --resume after a kill -9 while a cancel's end went out: never
     std::string port = dir + "/printer", journal = dir + "/print.journal", fifo = dir + "/control";
     std::string numbered = numbered_count(dir);
     std::string script =
-        printer_up(dir) + gc_send("-q --port " + quote(port) + " --journal " + quote(journal) + " --control " +
-                                  quote(fifo) + " " + quote(input)) +
+        // A slow lift (10 mm at 0.5 mm/s): the cancel's end lasts a second, so the kill
+        // lands inside it however late a loaded machine runs the script.
+        printer_up(dir) + gc_send("-q --lift 10 --z-speed 0.5 --port " + quote(port) + " --journal " + quote(journal) +
+                                  " --control " + quote(fifo) + " " + quote(input)) +
         " 2>/dev/null & gs=$!\n"
         "for i in $(seq 1000); do grep -q ' layer=1 ' " + quote(journal) + " 2>/dev/null && break; sleep 0.01; done\n"
         "sleep 0.3\n"  // inside layer 1
@@ -311,7 +313,7 @@ TEST_CASE("gc-send --resume after a kill -9 while a cancel's end went out: never
         "for i in $(seq 2000); do grep -q ' state=cancelling ' " + quote(journal) + " && break; sleep 0.002; done\n"
         "kill -9 $gs; wait $gs 2>/dev/null\n"
         "grep -q '^F ' " + quote(journal) + " && echo finished-before-the-kill\n" +
-        (reset ? "kill -USR1 $vp\n" : "") + "sleep 1\ncp " + quote(journal) + " " + quote(dir + "/before.journal") +
+        (reset ? "kill -USR1 $vp\n" : "") + "sleep 2\ncp " + quote(journal) + " " + quote(dir + "/before.journal") +
         "\nn=$(" + numbered + ")\n" +
         gc_send("--port " + quote(port) + " --resume " + quote(journal) + " " + quote(input)) + "; s=$?\n"
         "[ $(" + numbered + ") = $n ] || echo sent-something\n"
