@@ -253,7 +253,7 @@ void Sender::fill(double now) {
     // Our M105s hold bytes of the printer's buffer but no place in its
     // queue for long: it answers them as soon as they are read.
     if (!flow_.may_send(flight_.lines(), flight_.bytes() + reserve, s.wire.size())) break;
-    if (config_.pace && s.move && paced(now)) {
+    if (pacing() && s.move && paced(now)) {
       pace_probe(now, reserve);
       break;
     }
@@ -295,7 +295,7 @@ void Sender::acknowledge_front(double now, int planner_free) {
   const InFlight::Entry f = flight_.pop_front();
   if (f.number < 0) {
     clock_.answered(0, now);
-    if (f.number == InFlight::kPaceProbe && config_.pace)
+    if (f.number == InFlight::kPaceProbe && pacing())
       pacer_.probe_answered(now, f.arrival == InFlight::kNotArrived ? Pacer::kUnknown : f.arrival,
                             clock_.planner_blocks());
     return;
@@ -473,6 +473,8 @@ void Sender::detect_flavour() {
   if (!config_.firmware_from_report || found == nullptr || found == config_.firmware) return;
   config_.firmware = found;
   log(LogLevel::Info, 0, fmt::format("firmware: {} (flavour {})", firmware_.name, found->name));
+  if (config_.pace && found->ok_when_queued)
+    log(LogLevel::Info, 0, "pacing off: this firmware queues seconds of motion before its answers wait");
 }
 
 void Sender::on_line(std::string_view text, double now) {
@@ -654,7 +656,7 @@ void Sender::pace_probe(double now, std::size_t reserve) {
 }
 
 void Sender::planned(const Slot& s, const InFlight::Entry& f, double now, int planner_free) {
-  if (!config_.pace) return;
+  if (!pacing()) return;
   if (!s.move) {
     pacer_.answered_other(!s.instant);
     return;

@@ -322,6 +322,11 @@ class Sender : private TimeSink {
   bool silent_command_in_flight() const;
   void detect_flavour();
   bool waiting_lines_fit(std::size_t max_line) const;
+  // Pacing asked for, on a firmware whose answers can show its planner (not
+  // one that answers as soon as a command is queued: Klipper's host queues
+  // about 2 s of motion whatever the sender holds back, so holding moves
+  // would only slow the print to the file's feed rates).
+  bool pacing() const { return config_.pace && !config_.firmware->ok_when_queued; }
   bool paced(double now);
   void pace_probe(double now, std::size_t reserve);
   void planned(const Slot& s, const InFlight::Entry& f, double now, int planner_free);
