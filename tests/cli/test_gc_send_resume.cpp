@@ -313,7 +313,12 @@ TEST_CASE("gc-send --resume after a kill -9 while a cancel's end went out: never
         "for i in $(seq 2000); do grep -q ' state=cancelling ' " + quote(journal) + " && break; sleep 0.002; done\n"
         "kill -9 $gs; wait $gs 2>/dev/null\n"
         "grep -q '^F ' " + quote(journal) + " && echo finished-before-the-kill\n" +
-        (reset ? "kill -USR1 $vp\n" : "") + "sleep 2\ncp " + quote(journal) + " " + quote(dir + "/before.journal") +
+        (reset ? "kill -USR1 $vp\n" : "") +
+        // Until the printer has run what it took, its log still for 1.5 s
+        // (a fixed sleep of 2 s was too short on a loaded machine: the count
+        // below grew after it, with nothing sent).
+        "p=-1; for i in $(seq 100); do c=$(wc -l < " + quote(dir + "/executed.log") +
+        "); [ \"$c\" = \"$p\" ] && break; p=$c; sleep 1.5; done\ncp " + quote(journal) + " " + quote(dir + "/before.journal") +
         "\nn=$(" + numbered + ")\n" +
         gc_send("--port " + quote(port) + " --resume " + quote(journal) + " " + quote(input)) + "; s=$?\n"
         "[ $(" + numbered + ") = $n ] || echo sent-something\n"
