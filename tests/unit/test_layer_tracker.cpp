@@ -185,3 +185,64 @@ TEST_CASE("the state a sink gets at a boundary is the state before the layer's f
   CHECK(sink.before_z == sink.first_start_z);
   CHECK(sink.before_z.back() == Approx(0.8));
 }
+
+TEST_CASE("a stream resumed inside a layer, its mode decided: each extrusion comes out at once, not at the next marker",
+          "[layer_tracker]") {
+  // gc-send's resume: the lines from mid-layer 3 to the next marker. Left to
+  // find out the kind of file, the tracker held all of them until the
+  // marker (the sender then numbered a layer's worth at once).
+  std::string text = "G1 X10 Y10 E0.5\nG1 X20 Y10 E0.5\nG1 E-0.8\nG1 X30 Y30\nG1 E0.8\nG1 X40 Y30 E0.5\n"
+                     ";LAYER_CHANGE\n;Z:0.8\nG1 Z0.8\nG1 X50 Y30 E0.5\n";
+  gcode::LayerMarkers markers;
+  for (gcode::LayerMode mode : {gcode::LayerMode::Undecided, gcode::LayerMode::Markers}) {
+    INFO("mode " << static_cast<int>(mode));
+    struct Counter : gcode::LayerSink {
+      std::size_t pushed = 0;
+      std::vector<std::size_t> out_at;  // lines pushed when each line came out
+      void on_layer(const gcode::LayerInfo&, const gcode::MachineState&) override {}
+      void on_end_code(std::uint64_t, std::uint64_t, const gcode::MachineState&) override {}
+      void on_line(const gcode::TrackedLine&) override { out_at.push_back(pushed); }
+    } sink;
+    gcode::LayerTracker tracker(sink, markers);
+    gcode::MachineState state;
+    state.relative_e = true;
+    tracker.start_from(state);
+    if (mode != gcode::LayerMode::Undecided) tracker.decide_mode(mode);
+    gcode::MemoryLineSplitter split(text);
+    gcode::RawLine raw;
+    while (split.next(raw)) {
+      ++sink.pushed;
+      tracker.push(raw);
+    }
+    tracker.finish();
+    REQUIRE(sink.out_at.size() == 10);
+    if (mode == gcode::LayerMode::Undecided) {
+      CHECK(sink.out_at[0] >= 7);  // held to the marker
+    } else {
+      CHECK(sink.out_at[0] == 1);  // the first extrusion at once
+      CHECK(sink.out_at[1] == 2);
+      CHECK(sink.out_at[5] == 6);  // the travel between waits for the next extrusion only
+    }
+  }
+}
+
+TEST_CASE("layer marker search: a marker found in blocks cut anywhere, or none", "[layer_tracker]") {
+  gcode::LayerMarkers markers;
+  const std::string marked = "G1 X1 E1 ; a comment\nG1 X2\r\n;LAYER_CHANGE\r\nG1 X3\n";
+  for (std::size_t cut = 0; cut <= marked.size(); ++cut) {
+    INFO("cut at " << cut);
+    gcode::LayerMarkerSearch search(markers);
+    search.feed(std::string_view(marked).substr(0, cut));
+    search.feed(std::string_view(marked).substr(cut));
+    search.feed("\n");
+    CHECK(search.found());
+  }
+  gcode::LayerMarkerSearch none(markers);
+  none.feed("G1 X1 E1 ; LAYER_CHANGE is only named here\nG1 Z0.4 ; move up\n");
+  none.feed(std::string(100000, 'x'));  // a huge line without an end is no marker
+  none.feed(";LAYER_CHANGE\n");          // ... nor is what follows it on that line
+  CHECK_FALSE(none.found());
+  gcode::LayerMarkerSearch slic3r(markers);
+  slic3r.feed("G1 Z0.6 F9000 ; move to next layer (2)\n");
+  CHECK(slic3r.found());
+}

@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 
+#include "gcode/core/line.hpp"
 #include "gcode/core/number.hpp"
 
 namespace gcode {
@@ -230,6 +231,35 @@ CommentInfo LayerMarkers::classify_move(std::string_view c) const {
   long n = 0;
   if (skip(c, "(") && take_layer_number(c, n) && skip(c, ")")) set_number(info, n);
   return info;
+}
+
+bool LayerMarkers::marks_layer(std::string_view text) const {
+  if (text.find(';') == std::string_view::npos && text.find('(') == std::string_view::npos) return false;
+  const Line line = Line::parse(text);
+  if (line.comment.empty()) return false;
+  if (line.kind == CommandKind::None) return classify(line.comment_text()).marker != MarkerKind::None;
+  return line.is_move() && classify_move(line.comment_text()).marker != MarkerKind::None;
+}
+
+void LayerMarkerSearch::feed(std::string_view block) {
+  std::size_t pos = 0;
+  for (std::size_t nl; !found_ && (nl = block.find('\n', pos)) != std::string_view::npos; pos = nl + 1) {
+    std::string_view line = block.substr(pos, nl - pos);
+    if (cut_.empty()) {
+      look(line);
+    } else {
+      if (cut_.size() < kLongestLine) cut_.append(line.substr(0, kLongestLine - cut_.size()));
+      look(cut_);
+      cut_.clear();
+    }
+  }
+  if (!found_ && pos < block.size() && cut_.size() < kLongestLine)
+    cut_.append(block.substr(pos, kLongestLine - cut_.size()));
+}
+
+void LayerMarkerSearch::look(std::string_view line) {
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  found_ = markers_.marks_layer(line);
 }
 
 }  // namespace gcode

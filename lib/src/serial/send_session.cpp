@@ -172,6 +172,7 @@ void SendSession::hash_fed(std::string_view bytes) {
 void SendSession::skip_printed(std::uint64_t bytes, std::uint64_t hash_bytes, std::uint64_t lines, int layer,
                                const MachineState& state) {
   skipped_hash_ = 0;
+  LayerMarkerSearch markers(markers_);
   std::string block(kReadSize, '\0');
   const std::uint64_t need = std::max(bytes, hash_bytes);
   std::uint64_t done = 0;
@@ -186,6 +187,7 @@ void SendSession::skip_printed(std::uint64_t bytes, std::uint64_t hash_bytes, st
       // digest taken where the journal's checkpoint is.
       auto printed = static_cast<std::size_t>(std::min<std::uint64_t>(bytes - done, got.size()));
       std::string_view part = got.substr(0, printed);
+      markers.feed(part);
       std::uint64_t at = input_hash_.bytes();
       if (hash_bytes > at && hash_bytes <= at + part.size()) {
         auto head = static_cast<std::size_t>(hash_bytes - at);
@@ -216,6 +218,12 @@ void SendSession::skip_printed(std::uint64_t bytes, std::uint64_t hash_bytes, st
   resumed_layer_ = layer;
   resumed_z_ = state.lifted ? state.lift_base_z : state.position[kZ];
   pipeline_.start_from(state);
+  // Inside the print's layers its pipeline knows how they are marked from
+  // the printed part: left to find out, it held every line up to the next
+  // marker (a whole layer, several in a file without markers), which then
+  // went to the sender in one batch, numbered far ahead of the printer: a
+  // printer reset in it found the way back no longer held.
+  if (layer > 0) pipeline_.decide_layer_mode(markers.found() ? LayerMode::Markers : LayerMode::Heuristic);
 }
 
 // What read_print_area read of a stream into the pipeline goes to the

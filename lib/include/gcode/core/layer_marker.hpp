@@ -78,8 +78,30 @@ class LayerMarkers {
   // else, and always None when a user pattern replaces the built-in markers.
   CommentInfo classify_move(std::string_view comment_text) const;
 
+  // Whether a whole line (its text, without the line ending) marks a layer
+  // as LayerTracker reads it: a comment line's marker or a verbose layer move.
+  bool marks_layer(std::string_view line) const;
+
  private:
   std::unique_ptr<re2::RE2> user_;
+};
+
+// Looks for a layer marker in text that comes block by block (a line may
+// be cut between two): whether a file marks its layers, found from a part
+// of it (gc-send's resume reads the printed part so).
+class LayerMarkerSearch {
+ public:
+  explicit LayerMarkerSearch(const LayerMarkers& markers) : markers_(markers) {}
+  void feed(std::string_view block);
+  bool found() const { return found_; }
+
+ private:
+  static constexpr std::size_t kLongestLine = 1 << 16;  // longer: no marker (junk)
+  void look(std::string_view line);
+
+  const LayerMarkers& markers_;
+  std::string cut_;  // the start of a line the last block cut
+  bool found_ = false;
 };
 
 }  // namespace gcode

@@ -111,6 +111,11 @@ class LayerTracker {
     previous_ = state;
     before_tail_ = state;
   }
+  // A stream that continues a print inside its layers (gc-send's resume):
+  // the kind of file is known from what was printed, so no line is held
+  // back to find it out (held, the lines up to the next marker reached the
+  // sink in one batch). Before the first line.
+  void decide_mode(LayerMode mode) { mode_ = mode; }
   // Records the decimals the input uses per letter (see Precision).
   void set_precision(Precision* precision) { precision_ = precision; }
 

@@ -45,6 +45,9 @@ class Pipeline : private LayerSink {
   // The input continues a stream that left the machine in `state` (its
   // position, modes, E coordinate, F): before the first line.
   void start_from(const MachineState& state) { tracker_.start_from(state); }
+  // How its layers are found, when known from an earlier part of the same
+  // file (LayerTracker::decide_mode): before the first line.
+  void decide_layer_mode(LayerMode mode) { tracker_.decide_mode(mode); }
   // Buffers at least `bytes` of input from `fd` (less at its end) without
   // consuming it, and returns what is buffered; run() starts with it.
   std::string_view read_ahead(int fd, std::size_t bytes);
