@@ -259,6 +259,42 @@ TEST_CASE("journal: a long print stays bounded and keeps the newest points", "[s
   CHECK(::access((path + ".tmp-" + std::to_string(::getpid())).c_str(), F_OK) != 0);
 }
 
+TEST_CASE("journal: a compaction keeps the points up to the acknowledged line, however far the sender numbered ahead",
+          "[serial][journal]") {
+  // A resume after a printer reset walks back from the acknowledged line;
+  // with more than `keep` commands numbered after it, keeping only the
+  // newest lost it, and the resume went back from the newest instead.
+  std::string path = gctest::temp_dir() + "/ahead.journal";
+  JournalOptions options{path};
+  options.compact_bytes = 8 * 1024;
+  options.keep = 32;
+  JournalWriter w(options, header());
+  for (int i = 0; i < 100; ++i) w.sent(static_cast<std::uint64_t>(i + 1), point(i));
+  w.acknowledged(100);
+  for (int i = 100; i < 1100; ++i) {  // a batch numbered ahead, none answered
+    w.sent(static_cast<std::uint64_t>(i + 1), point(i));
+    w.flush(i * 0.01);
+  }
+  REQUIRE(w.compactions() > 0);
+  JournalContents c = read_journal(path);
+  CHECK(c.acknowledged == 100);
+  const JournalEntry* acked = c.at_or_before(100);
+  REQUIRE(acked != nullptr);
+  CHECK(acked->n == 100);
+  CHECK(acked->point == point(99));
+  CHECK(c.entries.front().n <= 100 - 32 + 1);
+  CHECK(c.entries.back().n == 1100);
+  // Once answered, the old points go at the next compaction.
+  w.acknowledged(1100);
+  for (int i = 1100; i < 2000; ++i) {
+    w.sent(static_cast<std::uint64_t>(i + 1), point(i));
+    w.acknowledged(static_cast<std::uint64_t>(i + 1));
+    w.flush(i * 0.01);
+  }
+  c = read_journal(path);
+  CHECK(c.entries.front().n > 1100);
+}
+
 TEST_CASE("input identity: a file's size and time, any stream's prefix hash", "[serial][journal]") {
   std::string path = gctest::temp_dir() + "/in.gcode";
   spit(path, "G28\nG1 X10 E1\n");

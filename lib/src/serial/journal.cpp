@@ -126,7 +126,12 @@ void JournalWriter::sent(std::uint64_t n, const JournalFields& point) {
     last_.update(point);
   }
   kept_.emplace_back(n, last_);
-  while (kept_.size() > options_.keep) kept_.pop_front();
+  // The newest `keep`, and as many up to the acknowledged line: a resume
+  // after a reset walks back from that line over what the printer may have
+  // lost, however far the sender numbered ahead of it (a few, or a batch);
+  // kMaxKept bounds a printer that never answers.
+  while (kept_.size() > options_.keep && (kept_[options_.keep].first <= acked_ || kept_.size() > kMaxKept))
+    kept_.pop_front();
 }
 
 void JournalWriter::acknowledged(std::uint64_t n) {

@@ -25,8 +25,9 @@
 //
 // Size: once the file passes `compact_bytes`, it is rewritten (temp file,
 // fsync, rename) as the header, a snapshot of the oldest command still
-// kept, deltas for the `keep` newest and the acknowledged line: bounded on
-// any print, 20 hours or 200.
+// kept, deltas for the `keep` newest (and the `keep` up to the acknowledged
+// line, where more were numbered ahead of it) and the acknowledged line:
+// bounded on any print, 20 hours or 200.
 #include <cstddef>
 #include <cstdint>
 #include <deque>
@@ -97,6 +98,7 @@ class JournalWriter {
   std::deque<std::pair<std::uint64_t, JournalFields>> kept_;  // full points, newest last
   std::uint64_t acked_ = 0;
   bool unsynced_ = false;
+  static constexpr std::size_t kMaxKept = 1 << 14;  // points kept at most, acknowledged or not
   bool sync_soon_ = false;
   bool finished_ = false;
   double last_sync_ = -1e300;
