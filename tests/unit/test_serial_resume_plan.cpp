@@ -116,6 +116,31 @@ TEST_CASE("resume plan: after a reset, back over the moves the planner may have 
   CHECK(delta.refusal.find("cannot home X and Y") != std::string::npos);
 }
 
+TEST_CASE("resume plan: after a reset, a journal that lost the lines to go back over is refused, not guessed",
+          "[serial][journal]") {
+  ResumeLimits limits;
+  limits.planner_blocks = 16;
+  // The acknowledged line itself is gone: going back from the newest line
+  // (as it once did) would skip every line between them.
+  Print p = print_of("prusa_cube_0.2_mk3s_rel_zhop.gcode", 5000);
+  p.journal.entries.erase(p.journal.entries.begin() + 4999);
+  ResumePlan plan = plan_resume(p.journal, {PrinterCondition::Reset, -1, std::nullopt}, limits);
+  CHECK_FALSE(plan.possible);
+  CHECK(plan.refusal.find("no longer holds line 5000, the last the printer acknowledged") != std::string::npos);
+  // A gap among the moves the planner may have lost.
+  Print q = print_of("prusa_cube_0.2_mk3s_rel_zhop.gcode", 5000);
+  q.journal.entries.erase(q.journal.entries.begin() + 4995);
+  plan = plan_resume(q.journal, {PrinterCondition::Reset, -1, std::nullopt}, limits);
+  CHECK_FALSE(plan.possible);
+  CHECK(plan.refusal.find("no longer holds the lines before line 4997") != std::string::npos);
+  // The journal starts a few lines before the acknowledged one.
+  Print r = print_of("prusa_cube_0.2_mk3s_rel_zhop.gcode", 5000);
+  r.journal.entries.erase(r.journal.entries.begin(), r.journal.entries.begin() + 4990);
+  plan = plan_resume(r.journal, {PrinterCondition::Reset, -1, std::nullopt}, limits);
+  CHECK_FALSE(plan.possible);
+  CHECK(plan.refusal.find("no longer holds the lines before line 4991") != std::string::npos);
+}
+
 TEST_CASE("resume plan: a finished or empty journal has nothing to resume", "[serial][journal]") {
   Print p = print_of("prusa_cube_0.2_mk3s_rel_zhop.gcode", 100);
   p.journal.finished = true;

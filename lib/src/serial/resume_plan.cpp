@@ -120,6 +120,13 @@ double distance(const MachineState& a, const MachineState& b) {
   return std::sqrt(dx * dx + dy * dy + dz * dz);
 }
 
+ResumePlan lost_before(std::uint64_t n, ResumePlan& plan) {
+  plan.refusal = fmt::format("the journal no longer holds the lines before line {}, among those the printer may have "
+                             "lost: where to go back to is not known",
+                             n);
+  return plan;
+}
+
 ResumePlan after_reset(const JournalContents& journal, const ResumeLimits& limits, ResumePlan plan) {
   if (!limits.can_home_xy_alone) {
     MachineState last;
@@ -129,6 +136,13 @@ ResumePlan after_reset(const JournalContents& journal, const ResumeLimits& limit
     return plan;
   }
   std::size_t acked = journal.acknowledged > 0 ? index_of(journal, journal.acknowledged) : std::string::npos;
+  if (acked == std::string::npos && journal.acknowledged > 0) {
+    // Going back from the newest line instead could skip what never ran.
+    plan.refusal = fmt::format("the journal no longer holds line {}, the last the printer acknowledged: where to go "
+                               "back to is not known",
+                               journal.acknowledged);
+    return plan;
+  }
   if (acked == std::string::npos) acked = journal.entries.size() - 1;
   // Walk back over the newest planner_blocks acknowledged moves: the last
   // one that surely ran is the entry before the oldest of them.
@@ -148,6 +162,7 @@ ResumePlan after_reset(const JournalContents& journal, const ResumeLimits& limit
       }
       break;
     }
+    if (journal.entries[i - 1].n + 1 != journal.entries[i].n) return lost_before(journal.entries[i].n, plan);
     if (!read_machine_fields(journal.entries[i - 1].point, before, problem)) break;
     if (is_move(before, after)) {
       ++moves;
@@ -157,6 +172,9 @@ ResumePlan after_reset(const JournalContents& journal, const ResumeLimits& limit
     after = before;
     --i;
   }
+  // Short of the planner's moves at the journal's oldest line: the lines
+  // before it, which the printer may have lost, are no longer held.
+  if (i == 0 && moves < limits.planner_blocks && journal.entries[0].n > 1) return lost_before(journal.entries[0].n, plan);
   if (!take_entry(journal, i, plan)) return plan;
   plan.track = read_track_fields(journal.entries[i].point, plan.state);
   if (plan.track.top_z <= 0) {
