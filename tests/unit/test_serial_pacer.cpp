@@ -454,7 +454,7 @@ TEST_CASE("pacer: behind a link, a printer that answers moves of no length at on
   CHECK(s.pacer.speed_factor() <= 1.0 + 1e-9);
 }
 
-TEST_CASE("probe credit: probes that find room double the moves they let go, a full planner puts it back to one", "[serial][pacer]") {
+TEST_CASE("probe credit: probes that find room double the moves they let go, a late one puts it back to one, a move that waited halves it", "[serial][pacer]") {
   ProbeCredit c;
   CHECK(c.due());
   CHECK(c.answered(true, true, 16) == 0);  // the one move the model frees
@@ -476,9 +476,9 @@ TEST_CASE("probe credit: probes that find room double the moves they let go, a f
   CHECK(c.left() == 0);
   CHECK(c.answered(true, true, 16) == 0);
   CHECK(c.answered(true, true, 16) == 1);
-  c.full();  // a move ahead of the next probe waited for a block
+  CHECK(c.answered(true, true, 16) == 3);
+  c.full();  // a move ahead of the next probe waited for a block: halved
   CHECK(c.left() == 0);
-  CHECK(c.answered(true, true, 16) == 0);  // its quick answer says nothing
-  CHECK(c.answered(true, true, 16) == 0);
-  CHECK(c.answered(true, true, 16) == 1);
+  CHECK(c.answered(true, true, 16) == 0);  // and no more on its quick answer
+  CHECK(c.answered(true, true, 16) == 3);
 }

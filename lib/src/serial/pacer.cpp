@@ -146,7 +146,7 @@ void Pacer::answered(const Answer& a, int planner_blocks, double time_scale) {
     // takes the printer longer to read than a probe's, which may have set
     // the base.
     if (known) move_base_ = std::min(move_base_, a.now - a.arrival);
-    heard_wait(known ? a.now - a.arrival - move_base_ : 0, bounded, answered_ - n);
+    heard_wait(known ? a.now - a.arrival - move_base_ : 0, bounded, answered_ - n, a.number == probe_move_);
   }
   if (a.number >= probe_move_) probe_move_ = -1;
   chain();
@@ -161,17 +161,18 @@ void Pacer::answered(const Answer& a, int planner_blocks, double time_scale) {
 // at 10 x a block is shorter than that wandering, and the timing rule of
 // observe() takes noise for waits) says the planner was full: no more moves
 // beyond the model. (Those let go on probes' word are not in its count.)
-void Pacer::heard_wait(double late, bool bounded, long long freed) {
+void Pacer::heard_wait(double late, bool bounded, long long freed, bool probes_move) {
   const double noise = std::max(3 * jitter_, 2 * move_base_);
   const double block = move(std::max(freed, oldest())).seconds;
-  if (!bounded || late <= std::max(kGrace * block, noise)) return;
-  // It waited, and no probe ever did, though only the one move the model
-  // freed went on the last one's word (more, and the wait may be the
-  // bet's): the printer answers probes at once, and their word that it
-  // had room is worth nothing. (A delta's move waits after most of its
-  // probes; the host's own stalls, a few times, are not taken for it.)
-  if (probes_ > 0 && late_probes_ == 0 && credit_.size() <= 2 && ++unheard_waits_ >= kFoundOut &&
-      3 * unheard_waits_ >= 2 * probes_ && !probes_unheard_) {
+  // Far longer than the block at the file's pace it would have waited for
+  // (with room for acceleration) is a stall of the host's, not a wait.
+  if (!bounded || late <= std::max(kGrace * block, noise) || late > kStall * block) return;
+  // The one move let go on a probe's word waited, and no probe ever did:
+  // the printer answers probes at once, and their word that it had room
+  // is worth nothing. (A delta's waits after most of its probes; the
+  // host's own stalls, now and then, are not taken for it.)
+  if (probes_move && late_probes_ == 0 && ++unheard_waits_ >= kFoundOut && 3 * unheard_waits_ >= 2 * probes_ &&
+      !probes_unheard_) {
     // The speed their answers showed is forgotten: back to the file's.
     probes_unheard_ = true;
     floor_ = PaceRate::kMin;

@@ -5,9 +5,9 @@
 namespace gcode::serial {
 
 int ProbeCredit::answered(bool room, bool grow, int planner_blocks) {
-  // A move ahead of the probe that waited for a block says more than the
-  // probe's quick answer: a block had just ended.
-  room = room && !full_;
+  // A move ahead of the probe waited for a block: the probe's quick answer
+  // lets no more go this time.
+  grow = grow && !full_;
   full_ = false;
   const int blocks = std::max(1, planner_blocks);
   if (!room) {
@@ -28,8 +28,10 @@ int ProbeCredit::answered(bool room, bool grow, int planner_blocks) {
 }
 
 void ProbeCredit::full() {
+  // Halved, not back to one: a move's lateness is the host's timing too,
+  // and the probe behind it (held by a full planner) says the rest.
   full_ = true;
-  size_ = 1;
+  size_ = std::max(1, size_ / 2);
   left_ = 0;
   lead_ = 0;
 }

@@ -67,6 +67,7 @@ class Pacer {
   static constexpr double kFloorDecay = 0.995;  // per answered move: the shown speed is forgotten slowly
   static constexpr double kOutpaced = 0.5;      // of the moves' time at the model's pace: a probe's round trip that long may be the limit
   static constexpr double kQuick = 0.5;         // of a block at the model's pace: a probe answered within it found room at once
+  static constexpr double kStall = 4;           // blocks at the file's pace: a move's answer later than that is the host's stall
   static constexpr int kFoundOut = 4;           // moves that waited while probes never did: probes are answered at once
 
   // A move `number` may go, with `moves_in_flight` sent and not answered
@@ -126,7 +127,7 @@ class Pacer {
   const Planned* next_to_end(double now, int planner_blocks) const;
   bool waited_for_block(double late, bool bounded, long long block) const;
   bool outpaced_by_probes(double now);
-  void heard_wait(double late, bool bounded, long long freed);
+  void heard_wait(double late, bool bounded, long long freed, bool probes_move);
   bool observe(long long freed, double entered, double late, bool bounded);
   // An answer's timing: when its command entered the planner, how late it
   // came past the host's own latency, and whether it came apart from the

@@ -8,10 +8,11 @@
 // before let go, doubles them (1, 2, 4 ... up to the planner's blocks). A
 // printer the link cannot keep full (it drains its blocks faster than the
 // line refills them, or it answers at once) is so fed at the link's speed;
-// its probes keep finding room. A probe answered late, or a move that
-// waited for a block, puts it back to one: at the file's pace the planner
-// is full, its probes come late and one move goes per block that ends (the
-// moves ahead of the nozzle stay within the planner's size).
+// its probes keep finding room. A probe answered late puts it back to one:
+// at the file's pace the planner is full, its probes come late and one
+// move goes per block that ends (the moves ahead of the nozzle stay within
+// the planner's size). A move that waited for a block halves it (its
+// lateness is partly the host's; the probe behind it says the rest).
 namespace gcode::serial {
 
 class ProbeCredit {
@@ -21,7 +22,7 @@ class ProbeCredit {
   // Returns the moves it lets go on top of the one block the pacer's model
   // frees for it.
   int answered(bool room, bool grow, int planner_blocks);
-  // A move waited for a block: the planner was full.
+  // A move waited for a block: the planner was full (or the host slow).
   void full();
   // May a move go beyond the model (and takes it)?
   bool take();
