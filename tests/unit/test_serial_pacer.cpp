@@ -454,7 +454,7 @@ TEST_CASE("pacer: behind a link, a printer that answers moves of no length at on
   CHECK(s.pacer.speed_factor() <= 1.0 + 1e-9);
 }
 
-TEST_CASE("probe credit: probes that find room double the moves they let go, a late one puts it back to one, a move that waited halves it", "[serial][pacer]") {
+TEST_CASE("probe credit: probes that find room double the moves they let go, a late one puts it back to one, a move that waited stops the doubling", "[serial][pacer]") {
   ProbeCredit c;
   CHECK(c.due());
   CHECK(c.answered(true, true, 16) == 0);  // the one move the model frees
@@ -477,8 +477,9 @@ TEST_CASE("probe credit: probes that find room double the moves they let go, a l
   CHECK(c.answered(true, true, 16) == 0);
   CHECK(c.answered(true, true, 16) == 1);
   CHECK(c.answered(true, true, 16) == 3);
-  c.full();  // a move ahead of the next probe waited for a block: halved
+  c.full();  // a move ahead of the next probe waited for a block: none left
   CHECK(c.left() == 0);
-  CHECK(c.answered(true, true, 16) == 0);  // and no more on its quick answer
-  CHECK(c.answered(true, true, 16) == 3);
+  CHECK(c.answered(true, true, 16) == 7);  // the probe found room: no more than last time
+  CHECK(c.answered(true, true, 16) == 7);
+  CHECK(c.answered(true, true, 16) == 15);
 }

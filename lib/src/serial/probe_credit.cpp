@@ -4,10 +4,8 @@
 
 namespace gcode::serial {
 
-int ProbeCredit::answered(bool room, bool grow, int planner_blocks) {
-  // A move ahead of the probe waited for a block: the probe's quick answer
-  // lets no more go this time.
-  grow = grow && !full_;
+int ProbeCredit::answered(bool room, bool wanted, int planner_blocks) {
+  const bool waited = full_;
   full_ = false;
   const int blocks = std::max(1, planner_blocks);
   if (!room) {
@@ -16,22 +14,24 @@ int ProbeCredit::answered(bool room, bool grow, int planner_blocks) {
     lead_ = 0;
     return 0;
   }
-  // (Added to those of the probe before that are still left: it went
-  // before them.)
   // Room, but the printer does not run dry between probes: one move, as
   // at the file's pace; the size stays for when it does.
-  const int more = grow ? size_ - 1 : 0;
+  if (!wanted) return 0;
+  // (Added to those of the probe before that are still left: it went
+  // before them.)
+  const int more = size_ - 1;
   left_ = std::min(left_ + more, blocks - 1);
   lead_ = left_ / 4;
-  if (grow) size_ = std::min(2 * size_, blocks);
+  // A move ahead of it waited for a block, yet it found room: as many as
+  // last time, no more.
+  if (!waited) size_ = std::min(2 * size_, blocks);
   return more;
 }
 
 void ProbeCredit::full() {
-  // Halved, not back to one: a move's lateness is the host's timing too,
-  // and the probe behind it (held by a full planner) says the rest.
+  // No more now; the probe behind it says whether the planner was full
+  // (Marlin holds it then): a move's lateness is the host's timing too.
   full_ = true;
-  size_ = std::max(1, size_ / 2);
   left_ = 0;
   lead_ = 0;
 }

@@ -39,10 +39,11 @@
 // behind the moves the one before let go, or ahead of the last quarter of
 // them) while the moves of a round trip ran, at the model's pace, in under
 // twice its time, let more moves go past the model each time, 1, 2, 4 ...
-// up to the planner's blocks; a late probe or a move that clearly waited
-// for a block puts it back to one (probe_credit.hpp). At the file's pace
-// the planner is full and the probes come late; a bet that lost holds at
-// most the command queue's moves more. A printer that answers probes at
+// up to the planner's blocks; a late probe puts it back to one, a move
+// that clearly waited for a block stops it until the next probe's answer
+// (probe_credit.hpp). At the
+// file's pace the planner is full and the probes come late; a bet that
+// lost holds at most the command queue's moves more. A printer that answers probes at
 // once for another reason (a delta: Marlin returns before the planner)
 // would seem always to have room: the one move let go on each probe's
 // word waits for a block; a few such waits (while no probe ever did) stop

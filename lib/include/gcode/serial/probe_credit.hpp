@@ -11,17 +11,19 @@
 // its probes keep finding room. A probe answered late puts it back to one:
 // at the file's pace the planner is full, its probes come late and one
 // move goes per block that ends (the moves ahead of the nozzle stay within
-// the planner's size). A move that waited for a block halves it (its
-// lateness is partly the host's; the probe behind it says the rest).
+// the planner's size). A move that waited for a block stops the moves
+// let go that have not gone, and the next probe does not double them (a
+// move's lateness is partly the host's; the probe behind it says whether
+// the planner was full).
 namespace gcode::serial {
 
 class ProbeCredit {
  public:
-  // A probe answered; `room`: at once; `grow`: one move per probe is too
-  // few (the printer ran the moves of the last round trip in less time).
+  // A probe answered; `room`: at once; `wanted`: one move per probe may be
+  // too few (the printer may run the moves of a round trip in less time).
   // Returns the moves it lets go on top of the one block the pacer's model
   // frees for it.
-  int answered(bool room, bool grow, int planner_blocks);
+  int answered(bool room, bool wanted, int planner_blocks);
   // A move waited for a block: the planner was full (or the host slow).
   void full();
   // May a move go beyond the model (and takes it)?
