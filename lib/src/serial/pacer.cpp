@@ -220,7 +220,11 @@ void Pacer::probe_answered(double now, double arrival, int planner_blocks) {
   // model's pace: one a block late is a planner that is full, whatever
   // the host's latency let observe() take it for.
   const bool quick = t.late < kQuick * move(freed).seconds / rate_.factor();
-  const int c = credit_.answered(!waited, outpaced && quick, planner_blocks);
+  // Once shown, the link stays the limit until a probe says the planner
+  // was full: the model's pace, which the link held down, is no measure of
+  // slower moves (a layer's first ones after its fast infill).
+  link_bound_ = !waited && quick && (link_bound_ || outpaced);
+  const int c = credit_.answered(!waited, link_bound_, planner_blocks);
   // Room, and only the model's one block for it: the next probe waits for
   // that move's answer, so a printer that answers probes at once is found
   // out by its wait before another goes.

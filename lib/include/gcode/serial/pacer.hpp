@@ -163,6 +163,7 @@ class Pacer {
   bool advanced_ = false;        // ADVANCED_OK's P seen: no probes
   long long probes_ = 0;        // probe answers,
   long long late_probes_ = 0;   // those that waited for a block
+  bool link_bound_ = false;     // probes showed the link is the limit, and none since that the planner was full
   double last_probe_ = -kNever; // when the last probe was answered,
   long long probe_mark_ = 0;    // the moves answered then
   bool probes_unheard_ = false; // moves waited for a block while no probe had: probes are answered at once
