@@ -37,9 +37,10 @@
 // moves take no time would get one move per probe's round trip. So probes
 // that keep finding room (answered within half a block, each sent right
 // behind the moves the one before let go, or ahead of the last quarter of
-// them) while the moves of a round trip ran, at the model's pace, in under
-// twice its time, let more moves go past the model each time, 1, 2, 4 ...
-// up to the planner's blocks; a late probe puts it back to one, a move
+// them), once the moves of a round trip ran, at the model's pace, in under
+// twice its time (the link the limit, not the printer: until a probe says
+// the planner was full), let more moves go past the model each time, 1, 2,
+// 4 ... up to the planner's blocks; a late probe puts it back to one, a move
 // that clearly waited for a block stops it until the next probe's answer
 // (probe_credit.hpp). At the
 // file's pace the planner is full and the probes come late; a bet that
