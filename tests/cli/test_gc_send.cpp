@@ -170,6 +170,9 @@ TEST_CASE("gc-send: 3000 short moves at 250000 baud with faults are exact with n
   std::string printer = "--time-scale 2 --instant-moves";
   std::string faults =
       " --fault corrupt=0.01 --fault drop-ok=0.002 --fault garbage=0.002 --fault resend=0.002 --fault seed=3";
+  // (--no-pace: pacing sends no probe on a link that has garbled a line,
+  // so a paced faulty run would measure the pacer's fallback, a move per
+  // answer, against a clean run fed at the link's speed, not the recovery.)
   PtyRun clean, faulty;
   double t_clean = seconds_of([&] { return send_through_pty(file, "--no-pace", printer); }, clean);
   double t_faulty = seconds_of([&] { return send_through_pty(file, "--no-pace", printer + faults); }, faulty);

@@ -526,7 +526,7 @@ struct PaceRuns {
   double paced = 0, unpaced = 0, paced_time = 0, unpaced_time = 0;
 };
 
-PaceRuns pace_against_no_pace(const std::string& printer, const std::string& options) {
+PaceRuns pace_against_no_pace(const std::string& printer, const std::string& options, double speed = 2) {
   std::string file = gctest::temp_dir() + "/fast.gcode";
   auto made = gctest::run(quote(tool_path("gc-subdivide")) + " --max 0.2 " +
                           quote(gctest::fixture_path("prusa_cube_0.2_mk3s_rel_zhop.gcode")) +
@@ -536,7 +536,8 @@ PaceRuns pace_against_no_pace(const std::string& printer, const std::string& opt
   PaceRuns runs;
   for (bool paced : {true, false}) {
     auto r = gctest::run(quote(tool_path("gc-send")) + " " + options + (paced ? "" : " --no-pace") +
-                         " --port virtual:time-scale=5,heat-rate=100000,speed-factor=2" + printer + " " + quote(file));
+                         " --port virtual:time-scale=5,heat-rate=100000,speed-factor=" + std::to_string(speed) +
+                         printer + " " + quote(file));
     INFO(r.err);
     REQUIRE(r.status == 0);
     (paced ? runs.paced : runs.unpaced) = number_after(r.err, "planner starved ");
@@ -568,4 +569,20 @@ TEST_CASE("gc-send pacing: a printer twice as fast without ADVANCED_OK is follow
                           << " s against " << r.unpaced_time << " s");
   CHECK(r.paced <= r.unpaced + 1);
   CHECK(r.paced_time <= 1.05 * r.unpaced_time);
+}
+
+TEST_CASE("gc-send pacing: a printer ten times as fast, which the link cannot keep full, is fed as fast as with --no-pace", "[gc-send][pace]") {
+  // It drains its 16 blocks faster than 250000 baud refills them; a move
+  // per probe's round trip ran at 29 % of --no-pace's rate (117 commands/s
+  // against 405), starved 89 % of the print against 44 %. Probes that keep
+  // finding room now let up to 16 moves go each.
+  PaceRuns r = pace_against_no_pace("", "", 10);
+  INFO("planner starved " << r.paced << " % paced, " << r.unpaced << " % with --no-pace; " << r.paced_time
+                          << " s against " << r.unpaced_time << " s");
+  // (The issue's goal, 5 % and 1 % of the print, holds for
+  // bench/pace-table.sh's 3000 lines; in these 1500 the layer's slower
+  // moves after its first ones weigh more, and a loaded host's stalls move
+  // either run's figures by a few per cent.)
+  CHECK(r.paced_time <= 1.1 * r.unpaced_time);
+  CHECK(r.paced <= r.unpaced + 6);
 }

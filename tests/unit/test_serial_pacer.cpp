@@ -10,6 +10,7 @@
 
 #include "gcode/serial/pace_rate.hpp"
 #include "gcode/serial/pacer.hpp"
+#include "gcode/serial/probe_credit.hpp"
 
 using namespace gcode::serial;
 
@@ -101,6 +102,133 @@ Scripted probing(double factor) {
   s.factor = factor;
   s.probes = true;
   return s;
+}
+
+// A printer behind a serial link, the host pacing with moves of no length
+// as gc-send does: each line takes `link` seconds on the wire, one after
+// the other (a probe a tenth of that); the host keeps at most `queue` lines in flight (Marlin's
+// BUFSIZE); the printer takes each line in order once it has arrived and,
+// a move, once a block is free (a probe too, unless it answers probes at
+// once); each answer reaches the host `back` seconds later. Moves run
+// `factor` times faster than their nominal time, or take none (`instant`).
+// Counted: the time the planner stood empty, the most moves ahead of the
+// nozzle (in the planner or on their way to it), the time it all took.
+struct Linked {
+  int blocks = 16;
+  int queue = 4;
+  double factor = 1;
+  bool instant = false;
+  double link = 0.25;
+  double back = 0.02;
+  bool pace = true;
+  bool holds_probes = true;
+  Pacer pacer;
+  double now = 0;
+  double starved = 0;
+  std::size_t most_ahead = 0;
+  int probes_sent = 0;
+  long long number = 0;
+
+  struct Line {
+    long long number;  // 0: a probe
+    double seconds;
+    double arrival;
+    double answer;
+  };
+  std::deque<Line> flight;
+  double wire_free = 0;         // when the wire is free for the next line
+  double taken = 0;             // when the printer took the last line
+  std::deque<double> planner;   // when the moves in it end
+  std::deque<double> ahead;     // when the moves sent and not ended end
+  double last_end = 0;
+
+  // The printer takes a line that arrived at `arrival`: when it answers.
+  double take(bool move, double seconds, double arrival) {
+    double t = std::max(arrival, taken);
+    while (!planner.empty() && planner.front() <= t) planner.pop_front();
+    if ((move || holds_probes) && static_cast<int>(planner.size()) >= blocks) {
+      t = planner.front();
+      planner.pop_front();
+    }
+    taken = t;
+    if (move) {
+      if (planner.empty() && number > 1 && last_end < t) starved += t - last_end;
+      const double end = (planner.empty() ? t : std::max(planner.back(), t)) + (instant ? 0 : seconds / factor);
+      planner.push_back(end);
+      ahead.push_back(end);
+      last_end = end;
+    }
+    return t + back;
+  }
+  void send(bool move, double seconds) {
+    // A probe's "G1" is 3 bytes, a move's line some 30.
+    const double arrival = std::max(now, wire_free) + (move ? link : link / 10);
+    wire_free = arrival;
+    if (move) ++number;
+    while (!ahead.empty() && ahead.front() <= now) ahead.pop_front();
+    flight.push_back({move ? number : 0, seconds, arrival, take(move, seconds, arrival)});
+    most_ahead = std::max(most_ahead, ahead.size());
+  }
+  void answer(const Line& l) {
+    if (l.number == 0) {
+      pacer.probe_answered(now, l.arrival, blocks);
+      return;
+    }
+    pacer.answered({l.number, l.seconds, now, l.arrival, -1}, blocks, 1);
+  }
+  // The host's loop: `moves` moves of `seconds` nominal each.
+  void run(int moves, double seconds) {
+    int sent = 0;
+    while (sent < moves || !flight.empty()) {
+      while (!flight.empty() && flight.front().answer <= now) {
+        const Line l = flight.front();
+        flight.pop_front();
+        answer(l);
+      }
+      pacer.clear_wake();
+      while (sent < moves && static_cast<int>(flight.size()) < queue) {
+        int in_flight = 0;
+        bool probing = false;
+        for (const Line& l : flight) {
+          in_flight += l.number > 0 ? 1 : 0;
+          probing = probing || l.number == 0;
+        }
+        if (pace && pacer.blocked(now, in_flight, number + 1, blocks)) {
+          if (!probing && pacer.probe_wanted(blocks)) {
+            ++probes_sent;
+            send(false, 0);
+          }
+          break;
+        }
+        send(true, seconds);
+        ++sent;
+        // (gc-send's fill: a probe ahead of the last moves let go.)
+        if (pace && !probing && pacer.probe_ahead(blocks)) {
+          ++probes_sent;
+          send(false, 0);
+        }
+      }
+      double next = flight.empty() ? Pacer::kNever : flight.front().answer;
+      next = std::min(next, pacer.wake());
+      if (sent == moves && flight.empty()) break;
+      REQUIRE(next < Pacer::kNever);
+      now = std::max(now, next);
+    }
+  }
+};
+
+// The same moves paced and with no pacing: how long each took, how long
+// its planner stood empty.
+struct AgainstUnpaced {
+  double paced_time, unpaced_time, paced_starved, unpaced_starved;
+  std::size_t paced_ahead;
+};
+AgainstUnpaced against_unpaced(Linked printer, int moves) {
+  Linked unpaced = printer;
+  unpaced.pace = false;
+  printer.run(moves, 1);
+  unpaced.run(moves, 1);
+  return {printer.now, unpaced.now, printer.starved, unpaced.starved, printer.most_ahead};
 }
 
 }  // namespace
@@ -262,4 +390,96 @@ TEST_CASE("pacer: with ADVANCED_OK no move of no length is wanted", "[serial][pa
   s.advanced_ok = true;
   for (int i = 0; i < 200; ++i) s.move(1);
   CHECK(s.probes_sent == 0);
+}
+
+TEST_CASE("pacer: a printer that drains its planner faster than the link fills it is fed at the link's speed", "[serial][pacer]") {
+  // 10 x: a move takes a third of the time its line takes on the wire.
+  // Probes that keep finding room let more moves go each time (1, 2, 4
+  // ... 16); one probe answer per move held it to a probe's round trip per
+  // move (gc-send at 10 x: 117 commands/s against 405 with --no-pace).
+  Linked s;
+  s.factor = 10;
+  AgainstUnpaced r = against_unpaced(s, 2000);
+  INFO("paced " << r.paced_time << " s, starved " << r.paced_starved << "; unpaced " << r.unpaced_time
+                << " s, starved " << r.unpaced_starved);
+  CHECK(r.paced_time <= 1.05 * r.unpaced_time);
+  CHECK(r.paced_starved <= r.unpaced_starved + 0.01 * r.unpaced_time);
+}
+
+TEST_CASE("pacer: a printer whose moves take no time is fed at the link's speed", "[serial][pacer]") {
+  // OctoPrint's virtual printer, Klipper's pseudo-tty, gc-virtual-printer
+  // --instant-moves: every answer comes at once.
+  Linked s;
+  s.instant = true;
+  AgainstUnpaced r = against_unpaced(s, 2000);
+  INFO("paced " << r.paced_time << " s, unpaced " << r.unpaced_time << " s");
+  CHECK(r.paced_time <= 1.05 * r.unpaced_time);
+}
+
+TEST_CASE("pacer: behind a link, a printer at the file's pace or a little faster is followed and never overfilled", "[serial][pacer]") {
+  // At the file's pace its probes come late, or soon after a move that
+  // takes longer than their round trip: one move goes per block that ends.
+  // Faster, probes that find room may let more go (probe_credit.hpp), and
+  // a bet that lost holds the moves that went on it in the command queue:
+  // at most its places less the probe's. (gc-send's pause now at 2 x stays
+  // within 3.2 mm on the virtual printer.)
+  for (double factor : {1.0, 1.25, 2.0}) {
+    INFO("printer at " << factor << " x");
+    Linked s;
+    s.factor = factor;
+    AgainstUnpaced r = against_unpaced(s, 1000);
+    INFO("paced " << r.paced_time << " s, starved " << r.paced_starved << "; unpaced " << r.unpaced_time
+                  << " s, starved " << r.unpaced_starved);
+    CHECK(r.paced_ahead <= static_cast<std::size_t>(s.blocks + (factor > 1 ? s.queue - 1 : 0)));
+    CHECK(r.paced_time <= 1.05 * r.unpaced_time);
+    CHECK(r.paced_starved <= r.unpaced_starved + 0.01 * r.unpaced_time);
+  }
+}
+
+TEST_CASE("pacer: behind a link, a printer that answers moves of no length at once is found out", "[serial][pacer]") {
+  // A delta at the file's pace: its probes always say there is room, and
+  // the moves let go on their word wait for blocks.
+  Linked s;
+  s.holds_probes = false;
+  s.run(300, 1);
+  const int sent = s.probes_sent;
+  // (A few moves, each let go on one probe's word, waited before: the
+  // host's own stalls are not taken for such a printer.)
+  CHECK(sent >= 1);
+  CHECK(s.most_ahead <= static_cast<std::size_t>(s.blocks) + 2);
+  s.most_ahead = 0;
+  s.run(500, 1);
+  CHECK(s.probes_sent == sent);
+  CHECK(s.most_ahead <= static_cast<std::size_t>(s.blocks));
+  CHECK(s.pacer.speed_factor() <= 1.0 + 1e-9);
+}
+
+TEST_CASE("probe credit: probes that find room double the moves they let go, a late one puts it back to one, a move that waited stops the doubling", "[serial][pacer]") {
+  ProbeCredit c;
+  CHECK(c.due());
+  CHECK(c.answered(true, true, 16) == 0);  // the one move the model frees
+  CHECK(c.answered(true, true, 16) == 1);
+  CHECK(c.left() == 1);
+  CHECK_FALSE(c.due());
+  CHECK(c.take());
+  CHECK_FALSE(c.take());
+  CHECK(c.due());
+  CHECK(c.answered(true, true, 16) == 3);
+  CHECK(c.answered(true, true, 16) == 7);  // (the 3 not taken stay)
+  CHECK(c.left() == 10);
+  while (c.left() > 2) CHECK(c.take());
+  CHECK(c.due());  // a quarter left: the next probe goes ahead of them
+  CHECK(c.answered(true, true, 16) == 15);
+  CHECK(c.left() == 15);  // never more than the planner holds
+  CHECK(c.answered(true, true, 16) == 15);
+  CHECK(c.answered(false, true, 16) == 0);  // a late probe: back to one
+  CHECK(c.left() == 0);
+  CHECK(c.answered(true, true, 16) == 0);
+  CHECK(c.answered(true, true, 16) == 1);
+  CHECK(c.answered(true, true, 16) == 3);
+  c.full();  // a move ahead of the next probe waited for a block: none left
+  CHECK(c.left() == 0);
+  CHECK(c.answered(true, true, 16) == 7);  // the probe found room: no more than last time
+  CHECK(c.answered(true, true, 16) == 7);
+  CHECK(c.answered(true, true, 16) == 15);
 }

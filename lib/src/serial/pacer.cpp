@@ -28,7 +28,8 @@ bool Pacer::blocked(double now, int moves_in_flight, long long number, int plann
   const int n = static_cast<int>(blocks(planner_blocks));
   const int held = moves_in_flight + ahead(now, planner_blocks);
   wake_ = kNever;
-  if (held < n) return release(number, now);
+  // Beyond the model only on probes' word that the planner had room.
+  if (held < n || credit_.take()) return release(number, now);
   const Planned* first = next_to_end(now, planner_blocks);
   const double next = first != nullptr ? first->end : kNever;
   // With nothing in flight no answer will come: wake when a block ends.
@@ -63,13 +64,17 @@ void Pacer::sight(long long index, double t) {
   sighted_at_ = t;
 }
 
+// An answer `late` past the host's own latency by more than that wanders
+// (and more than a part of the block it may have waited for) waited.
+bool Pacer::waited_for_block(double late, bool bounded, long long block) const {
+  return bounded && late > std::max(kGrace * move(block).seconds / rate_.factor(), 3 * jitter_);
+}
+
 // The move just answered took the block of move `freed`: that one had ended
 // by `entered`, or ended then if the answer was late (it waited for it).
 bool Pacer::observe(long long freed, double entered, double late, bool bounded) {
   if (freed <= known_ || freed < oldest()) return false;
-  const double block = move(freed).seconds / rate_.factor();
-  // Late by more than the host's own latency wanders: a wait for it.
-  if (bounded && late > std::max(kGrace * block, 3 * jitter_)) {
+  if (waited_for_block(late, bounded, freed)) {
     // The answer came that late after the block ended, less the host's
     // usual latency (a model later than the printer starves it).
     known_ = freed;
@@ -135,10 +140,13 @@ void Pacer::answered(const Answer& a, int planner_blocks, double time_scale) {
     anchor_ = entered;
     sight(answered_ - holds, entered);
   } else {
-    const bool waited = observe(answered_ - n, entered, t.late, clean_ && known && t.apart);
-    // It waited for a block, and no probe ever did: the printer answers
-    // them at once, and their word that it had room is worth nothing.
-    if (waited && probes_ > 0 && late_probes_ == 0) probes_unheard_ = true;
+    const bool bounded = clean_ && known && t.apart;
+    observe(answered_ - n, entered, t.late, bounded);
+    // Late past the least time a move took to be answered: a move's line
+    // takes the printer longer to read than a probe's, which may have set
+    // the base.
+    if (known) move_base_ = std::min(move_base_, a.now - a.arrival);
+    heard_wait(known ? a.now - a.arrival - move_base_ : 0, bounded, answered_ - n, a.number == probe_move_);
   }
   if (a.number >= probe_move_) probe_move_ = -1;
   chain();
@@ -146,6 +154,32 @@ void Pacer::answered(const Answer& a, int planner_blocks, double time_scale) {
   learn_floor(freed, a.now);
   clean_ = true;
   last_now_ = a.now;
+}
+
+// A move that clearly waited for a block (later than the host's latency
+// wanders, and by a part of the block it waited for at the file's speed:
+// at 10 x a block is shorter than that wandering, and the timing rule of
+// observe() takes noise for waits) says the planner was full: no more moves
+// beyond the model. (Those let go on probes' word are not in its count.)
+void Pacer::heard_wait(double late, bool bounded, long long freed, bool probes_move) {
+  const double noise = std::max(3 * jitter_, 2 * move_base_);
+  const double block = move(std::max(freed, oldest())).seconds;
+  // Far longer than the block at the file's pace it would have waited for
+  // (with room for acceleration) is a stall of the host's, not a wait.
+  if (!bounded || late <= std::max(kGrace * block, noise) || late > kStall * block) return;
+  // The one move let go on a probe's word waited, and no probe ever did:
+  // the printer answers probes at once, and their word that it had room
+  // is worth nothing. (A delta's waits after most of its probes; the
+  // host's own stalls, now and then, are not taken for it.)
+  if (probes_move && late_probes_ == 0 && ++unheard_waits_ >= kFoundOut && 3 * unheard_waits_ >= 2 * probes_ &&
+      !probes_unheard_) {
+    // The speed their answers showed is forgotten: back to the file's.
+    probes_unheard_ = true;
+    floor_ = PaceRate::kMin;
+    rate_ = PaceRate{};
+    chain();
+  }
+  credit_.full();
 }
 
 void Pacer::learn_floor(long long freed, double now) {
@@ -157,25 +191,61 @@ void Pacer::learn_floor(long long freed, double now) {
 }
 
 bool Pacer::probe_wanted(int planner_blocks) const {
-  // One move released on a probe's word at a time: a printer that answers
-  // probes at once is found out by that move's wait, before another goes.
-  return !advanced_ && !probes_unheard_ && probe_move_ < 0 && !probe_credit_ &&
+  // Right behind the moves the last probe let go: its answer says whether
+  // the planner still had room once they were in (probe_credit.hpp).
+  return !advanced_ && !probes_unheard_ && credit_.due() && probe_move_ < 0 && !probe_credit_ &&
          answered_ >= static_cast<long long>(blocks(planner_blocks));
 }
+
+bool Pacer::probe_ahead(int planner_blocks) const { return credit_.left() > 0 && probe_wanted(planner_blocks); }
 
 // The probe went after every move answered so far and took no block: its
 // answer came once the oldest of the last n of them had left the planner.
 void Pacer::probe_answered(double now, double arrival, int planner_blocks) {
   ++probes_;
+  const bool outpaced = outpaced_by_probes(now);
+  // A move let go on an earlier one's word waited for a block: this one's
+  // answer at once says nothing of room.
+  if (probes_unheard_) return;
   const long long freed = answered_ - static_cast<long long>(blocks(planner_blocks)) + 1;
   // After a command that waits its lateness is not the planner's.
-  if (!clean_ || arrival == kUnknown || freed < oldest() || freed <= known_) return;
+  if (!clean_ || arrival == kUnknown || freed < oldest() || freed <= known_) {
+    credit_.answered(false, false, planner_blocks);
+    return;
+  }
   const Timing t = timing(now, arrival);
   const bool waited = observe(freed, t.entered, t.late, t.apart);
   if (waited) ++late_probes_;
-  probe_credit_ = !waited;
+  // More moves only on a probe that came within half a block at the
+  // model's pace: one a block late is a planner that is full, whatever
+  // the host's latency let observe() take it for.
+  const bool quick = t.late < kQuick * move(freed).seconds / rate_.factor();
+  // Once shown, the link stays the limit until a probe says the planner
+  // was full: the model's pace, which the link held down, is no measure of
+  // slower moves (a layer's first ones after its fast infill).
+  link_bound_ = !waited && quick && (link_bound_ || outpaced);
+  const int c = credit_.answered(!waited, link_bound_, planner_blocks);
+  // Room, and only the model's one block for it: the next probe waits for
+  // that move's answer, so a printer that answers probes at once is found
+  // out by its wait before another goes.
+  probe_credit_ = !waited && c == 0;
   chain();
   learn_floor(freed, now);
+}
+
+// Did the moves answered since the last probe's answer run, at the model's
+// pace, in less than twice the time since (kOutpaced)? Then a move per
+// probe's round trip may feed the planner slower than it drains, and more
+// per probe are wanted. Not while the round trip is short against the
+// moves: with none (a host that answers itself at once), a move per probe
+// keeps up with any printer, and more would only overfill it.
+bool Pacer::outpaced_by_probes(double now) {
+  double work = 0;
+  for (long long i = std::max(probe_mark_ + 1, oldest()); i <= answered_; ++i) work += move(i).seconds;
+  const bool outpaced = last_probe_ > -kNever && now - last_probe_ > kOutpaced * work / rate_.factor();
+  last_probe_ = now;
+  probe_mark_ = answered_;
+  return outpaced;
 }
 
 bool Pacer::release(long long number, double now) {

@@ -30,17 +30,31 @@
 // before it drops such a move (FirmwareFlavor::empty_move_waits), so its ok
 // says the oldest block the model holds had ended by then, and when it came
 // late, that it ended then (a sighting). Either frees a block of the model
-// without overfilling the planner (one move is released for it, and only
-// once the printer showed room), so the moves go out at the printer's pace
-// and the floor follows it. A printer that answers it at once (a delta:
-// Marlin returns before the planner) would seem always to have room: its
-// answers count only once one has come late, and a move that waited for a
-// block before any probe did stops the probes.
+// without overfilling the planner (one move is released for it), so the
+// moves go out at the printer's pace and the floor follows it. But the
+// floor never shows more than the pacer lets go: a printer that drains its
+// blocks faster than the link refills them (10 x at 250000 baud) or whose
+// moves take no time would get one move per probe's round trip. So probes
+// that keep finding room (answered within half a block, each sent right
+// behind the moves the one before let go, or ahead of the last quarter of
+// them), once the moves of a round trip ran, at the model's pace, in under
+// twice its time (the link the limit, not the printer: until a probe says
+// the planner was full), let more moves go past the model each time, 1, 2,
+// 4 ... up to the planner's blocks; a late probe puts it back to one, a move
+// that clearly waited for a block stops it until the next probe's answer
+// (probe_credit.hpp). At the
+// file's pace the planner is full and the probes come late; a bet that
+// lost holds at most the command queue's moves more. A printer that answers probes at
+// once for another reason (a delta: Marlin returns before the planner)
+// would seem always to have room: the one move let go on each probe's
+// word waits for a block; a few such waits (while no probe ever did) stop
+// the probes, and the speed learnt on their word is forgotten.
 #include <algorithm>
 #include <array>
 #include <cstddef>
 
 #include "gcode/serial/pace_rate.hpp"
+#include "gcode/serial/probe_credit.hpp"
 
 namespace gcode::serial {
 
@@ -53,6 +67,10 @@ class Pacer {
   static constexpr long long kMinShown = 8;     // moves a span of the printer's shown speed holds at least
   static constexpr double kShownMargin = 0.98;  // of the shown speed: the simulated clock's own slack
   static constexpr double kFloorDecay = 0.995;  // per answered move: the shown speed is forgotten slowly
+  static constexpr double kOutpaced = 0.5;      // of the moves' time at the model's pace: a probe's round trip that long may be the limit
+  static constexpr double kQuick = 0.5;         // of a block at the model's pace: a probe answered within it found room at once
+  static constexpr double kStall = 4;           // blocks at the file's pace: a move's answer later than that is the host's stall
+  static constexpr int kFoundOut = 4;           // moves that waited while probes never did: probes are answered at once
 
   // A move `number` may go, with `moves_in_flight` sent and not answered
   // and a planner of `planner_blocks`? When it must wait and nothing is in
@@ -77,6 +95,9 @@ class Pacer {
   // ADVANCED_OK, once the planner was filled, and while its answers may
   // still be believed.)
   bool probe_wanted(int planner_blocks) const;
+  // One now, ahead of the last moves a probe let go, so that its answer
+  // comes before they have gone (probe_credit.hpp)?
+  bool probe_ahead(int planner_blocks) const;
   // Its answer: `now`, and when its last byte reached the printer.
   void probe_answered(double now, double arrival, int planner_blocks);
 
@@ -106,6 +127,9 @@ class Pacer {
   const Planned& move(long long index) const { return ring_[static_cast<std::size_t>(index) % kHistory]; }
   long long oldest() const { return std::max(answered_ - static_cast<long long>(kHistory) + 1, 1LL); }
   const Planned* next_to_end(double now, int planner_blocks) const;
+  bool waited_for_block(double late, bool bounded, long long block) const;
+  bool outpaced_by_probes(double now);
+  void heard_wait(double late, bool bounded, long long freed, bool probes_move);
   bool observe(long long freed, double entered, double late, bool bounded);
   // An answer's timing: when its command entered the planner, how late it
   // came past the host's own latency, and whether it came apart from the
@@ -131,6 +155,7 @@ class Pacer {
   double sighted_at_ = 0;       // then
 
   double base_ = kNever;         // the least answer minus arrival: the host's own latency
+  double move_base_ = kNever;     // the least answer minus arrival of a move
   double jitter_ = 0;           // how late answers that did not wait came, on average
   bool clean_ = true;           // nothing but moves (or instant commands) since the last move
   double last_now_ = -kNever;   // when the last move was answered
@@ -139,7 +164,12 @@ class Pacer {
   bool advanced_ = false;        // ADVANCED_OK's P seen: no probes
   long long probes_ = 0;        // probe answers,
   long long late_probes_ = 0;   // those that waited for a block
-  bool probes_unheard_ = false; // a move waited for a block while no probe had: probes are answered at once
+  bool link_bound_ = false;     // probes showed the link is the limit, and none since that the planner was full
+  double last_probe_ = -kNever; // when the last probe was answered,
+  long long probe_mark_ = 0;    // the moves answered then
+  bool probes_unheard_ = false; // moves waited for a block while no probe had: probes are answered at once
+  int unheard_waits_ = 0;       // such waits so far
+  ProbeCredit credit_;          // moves let go beyond the model on probes' word
   bool probe_credit_ = false;   // a probe found room: the next move released is its
   long long probe_move_ = -1;   // that move, until answered
   double wake_ = kNever;
