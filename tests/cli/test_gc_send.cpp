@@ -155,10 +155,8 @@ std::vector<std::string> executed_of(const PtyRun& r) { return r.log.commands; }
 TEST_CASE("gc-send: 3000 short moves at 250000 baud with faults are exact with no timeout within 3 times the clean run",
           "[gc-send]") {
   // 0.2 mm pieces from the middle of a print; moves take no time, so the
-  // link and the recovery from faults are all that counts (--no-pace: the
-  // pacer's hold on moves is the pacing tests' subject, and a clean run it
-  // holds back hides the faults' cost). Time scale 2 keeps the test short;
-  // the figures in the README are at time scale 1.
+  // link and the recovery from faults are all that counts. Time scale 2
+  // keeps the test short; the figures in the README are at time scale 1.
   std::string dir = gctest::temp_dir();
   std::string file = dir + "/moves.gcode";
   auto r = run(quote(tool_path("gc-subdivide")) + " --max 0.2 " +

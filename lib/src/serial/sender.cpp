@@ -262,7 +262,7 @@ void Sender::fill(double now) {
       log(LogLevel::Trace, 0, fmt::format("-> {} @{:.6f}", std::string_view(s.wire).substr(0, s.wire.size() - 1), now));
     push_flight(next_send_, s.wire.size(), s.temperature_query);
     idle_hint_ = false;  // "wait" was about what went before
-    if (config_.pace && s.move && pacer_.probe_ahead(clock_.planner_blocks())) pace_probe(now, reserve);
+    if (pacing() && s.move && pacer_.probe_ahead(clock_.planner_blocks())) pace_probe(now, reserve);
     if (next_send_ > highest_sent_) {
       highest_sent_ = next_send_;
       ++stats_.lines;
