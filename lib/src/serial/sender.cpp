@@ -471,11 +471,15 @@ bool Sender::waiting_lines_fit(std::size_t max_line) const {
 // any line of the input is taken (they are classified by it).
 void Sender::detect_flavour() {
   const FirmwareFlavor* found = find_firmware_by_report(firmware_.name);
-  if (!config_.firmware_from_report || found == nullptr || found == config_.firmware) return;
-  config_.firmware = found;
-  log(LogLevel::Info, 0, fmt::format("firmware: {} (flavour {})", firmware_.name, found->name));
-  if (config_.pace && found->ok_when_queued)
+  if (config_.firmware_from_report && found != nullptr && found != config_.firmware) {
+    config_.firmware = found;
+    log(LogLevel::Info, 0, fmt::format("firmware: {} (flavour {})", firmware_.name, found->name));
+  }
+  // Said once, whether the flavour was detected now or set in the config.
+  if (config_.pace && config_.firmware->ok_when_queued && !pacing_off_said_) {
+    pacing_off_said_ = true;
     log(LogLevel::Info, 0, "pacing off: this firmware queues seconds of motion before its answers wait");
+  }
 }
 
 void Sender::on_line(std::string_view text, double now) {

@@ -373,6 +373,7 @@ class Sender : private TimeSink {
   bool printer_paused_ = false; // "// action:paused" until "// action:resumed"
   bool told_user_wait_ = false; // said once that a wait for the user holds the timeouts
   bool caps_answered_ = false;
+  bool pacing_off_said_ = false;  // detect_flavour(): "pacing off" said
   bool continuing_ = false;     // continue_from(): a resume's numbering
   // The command a resume went on after (held()): surely run, so a reset soon
   // after the resume goes back to it. -1: none.
