@@ -378,6 +378,50 @@ TEST_CASE("sender: after a reconnect, M114 must show where the last line taken l
   CHECK(moved->failure().find("stands at X25.000, but N2") != std::string::npos);
 }
 
+TEST_CASE("sender: a link drop during the handshake asks M110 and M115 again, not where a print stands",
+          "[serial][relink]") {
+  // Nothing numbered went out yet: the probe's refusal ("Last Line", its
+  // "ok") would pass for M115's answer and leave the sender waiting for a
+  // relocation that never comes (found with a resumed gc-send whose port
+  // dropped right after M115).
+  SenderConfig sc;
+  sc.finish_with_m400 = false;
+  Sender s(sc, [](LogLevel, std::uint64_t, std::string_view) {});
+  s.start(0);
+  CHECK(s.output() == "M110 N0\n");
+  s.written(s.output().size(), 0);
+  s.on_line("ok", 0.01);
+  CHECK(s.output() == "M115\n");
+  s.written(s.output().size(), 0.01);
+  s.link_lost(0.02);
+  s.link_back(0.5);
+  CHECK_FALSE(s.relinking());
+  CHECK(s.state() == SenderState::Handshake);
+  REQUIRE(s.output() == "M110 N0\n");
+  s.written(s.output().size(), 0.5);
+  s.on_line("ok", 0.51);
+  REQUIRE(s.output() == "M115\n");
+  s.written(s.output().size(), 0.51);
+  s.on_line("FIRMWARE_NAME:Marlin 2.1.2", 0.52);
+  s.on_line("ok", 0.52);
+  s.submit("G1 X10 F600", 1, 1);
+  s.on_timer(0.7);  // the link quiet a moment after M115
+  CHECK(s.state() == SenderState::Printing);
+  CHECK(s.output() == gctest::numbered(1, "G1 X10 F600"));
+  // A resume numbers on: only M115 is asked, before and after the drop.
+  SenderConfig rc;
+  rc.handshake = false;
+  Sender r(rc, [](LogLevel, std::uint64_t, std::string_view) {});
+  r.continue_from(41, gcode::MachineState{});
+  r.start(0);
+  CHECK(r.output() == "M115\n");
+  r.written(r.output().size(), 0);
+  r.link_lost(0.02);
+  r.link_back(0.5);
+  CHECK(r.state() == SenderState::Capabilities);
+  CHECK(r.output() == "M115\n");
+}
+
 TEST_CASE("sender: M112 goes out at once and halts the printer", "[serial]") {
   auto commands = fixture_commands("cura_cube_0.2_abs_zhop_skirt.gcode", 2000);
   SenderConfig sc;

@@ -32,20 +32,29 @@ void Sender::log(LogLevel level, std::uint64_t input_line, std::string_view mess
 
 void Sender::start(double now) {
   last_rx_ = last_any_rx_ = now;
+  if (config_.handshake || continuing_) {
+    begin_handshake(now);
+  } else {
+    state_ = SenderState::Printing;
+    fill(now);
+  }
+}
+
+// The questions before the first line; again after a link drop that cut
+// them short (sender_relink.cpp).
+void Sender::begin_handshake(double now) {
   handshake_start_ = handshake_retry_ = now;
+  caps_answered_ = false;
   if (config_.handshake) {
     state_ = SenderState::Handshake;
     // Unnumbered: Marlin only checks numbers on lines that start with N, and
     // M110 N0 makes the next numbered line N1.
     send_unnumbered(handshake_line(), false, false);
-  } else if (continuing_) {
+  } else {
     // A resume: the numbering stays, the capabilities (and a simulated
     // printer's time scale) are asked again.
     state_ = SenderState::Capabilities;
     send_unnumbered("M115", false, false);
-  } else {
-    state_ = SenderState::Printing;
-    fill(now);
   }
 }
 

@@ -30,6 +30,15 @@ void Sender::link_lost(double now) {
 
 void Sender::link_back(double now) {
   if (relink_ != Relink::Down || finished()) return;
+  if (state_ == SenderState::Handshake || state_ == SenderState::Capabilities) {
+    // Dropped while M110 or M115 waited for its answer: no numbered line
+    // went out since, so there is nothing to locate; the questions start
+    // again (the probe's refusal would pass for their answers).
+    relink_ = Relink::None;
+    log(LogLevel::Warning, 0, "the port came back during the handshake (M110, M115); asking again");
+    begin_handshake(now);
+    return;
+  }
   if (!config_.firmware->checks_line_numbers) {
     // (A mis-numbered line would simply run on Klipper.)
     fail(fmt::format("the port came back, but {} does not number lines: it cannot say which line it took last; "

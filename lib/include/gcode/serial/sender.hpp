@@ -341,6 +341,7 @@ class Sender : private TimeSink {
   }
   // False when the print failed instead (a line no longer fits under its new number).
   bool resubmit_after_reset(long long restore, const std::vector<std::string>& sequence);
+  void begin_handshake(double now);
   void restart_handshake(double now);
   std::string handshake_line() const;
   void track(Slot& s, const Line& line, const Move& move);
