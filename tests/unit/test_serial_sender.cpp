@@ -422,6 +422,36 @@ TEST_CASE("sender: a link drop during the handshake asks M110 and M115 again, no
   CHECK(r.output() == "M115\n");
 }
 
+TEST_CASE("sender: a greeting while a resume asks M115 of a printer that kept running is a reset, not a boot",
+          "[serial][reset][resume]") {
+  // The printer held the print (it took line 40 and ran it); its "start"
+  // now means the print is lost from its planner: the way back, numbered
+  // on from the print, not M110 N0.
+  SenderConfig sc;
+  sc.handshake = false;
+  Sender s(sc, [](LogLevel, std::uint64_t, std::string_view) {});
+  gcode::MachineState at;
+  at.position = {50, 60, 0.4, 0};
+  at.known = {true, true, true, true};
+  gcode::serial::ResumeTrack track;
+  track.top_z = 0.4;
+  s.continue_from(41, at, track, 120, 2);
+  s.start(0);
+  REQUIRE(s.output() == "M115\n");
+  s.written(s.output().size(), 0);
+  s.on_line("start", 0.1);
+  INFO(s.failure());
+  CHECK(s.stats().resets == 1);
+  CHECK(s.state() == SenderState::Handshake);
+  CHECK(s.output() == "M110 N40\n");
+  // A board that greets twice while it boots: the handshake again, the
+  // way back kept.
+  s.written(s.output().size(), 0.1);
+  s.on_line("start", 0.2);
+  CHECK(s.stats().resets == 1);
+  CHECK(s.output() == "M110 N40\n");
+}
+
 TEST_CASE("sender: M112 goes out at once and halts the printer", "[serial]") {
   auto commands = fixture_commands("cura_cube_0.2_abs_zhop_skirt.gcode", 2000);
   SenderConfig sc;

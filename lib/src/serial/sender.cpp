@@ -605,12 +605,15 @@ void Sender::on_action(std::string_view action) {
 // what the printer had queued: the print goes back to the last command
 // that surely ran (sender_reset.cpp).
 void Sender::on_start(std::string_view text, double now) {
-  if (state_ == SenderState::Handshake || state_ == SenderState::Capabilities) {
+  const bool handshaking = state_ == SenderState::Handshake || state_ == SenderState::Capabilities;
+  if (handshaking && !resumed_onto_running_printer()) {
     // (After M110 was answered: it restarted again, and forgot it.)
     state_ = SenderState::Handshake;
     caps_answered_ = false;
     send_unnumbered(handshake_line(), false, false);
-  } else if (state_ == SenderState::Printing) {
+  } else if (state_ == SenderState::Printing || handshaking) {
+    // (Handshaking here: a resume's M115 to a printer that had kept running
+    // the print; it holds the print no longer.)
     printer_reset(fmt::format("it said \"{}\"{}", text, relink_ != Relink::None ? " while its port was away" : ""),
                   now);
   }

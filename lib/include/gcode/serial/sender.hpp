@@ -342,6 +342,10 @@ class Sender : private TimeSink {
   // False when the print failed instead (a line no longer fits under its new number).
   bool resubmit_after_reset(long long restore, const std::vector<std::string>& sequence);
   void begin_handshake(double now);
+  // A resume onto a printer that kept running (continue_from), no reset
+  // since: a greeting now is a reset that lost the print, not a board
+  // still booting. (A reset's resubmission numbers M110 on from the print.)
+  bool resumed_onto_running_printer() const { return continuing_ && handshake_number_ == 0; }
   void restart_handshake(double now);
   std::string handshake_line() const;
   void track(Slot& s, const Line& line, const Move& move);
