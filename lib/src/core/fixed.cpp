@@ -6,26 +6,6 @@ namespace gcode {
 
 namespace {
 
-constexpr std::int64_t kPow10[] = {1,
-                                   10,
-                                   100,
-                                   1000,
-                                   10000,
-                                   100000,
-                                   1000000,
-                                   10000000,
-                                   100000000,
-                                   1000000000,
-                                   10000000000,
-                                   100000000000,
-                                   1000000000000,
-                                   10000000000000,
-                                   100000000000000,
-                                   1000000000000000,
-                                   10000000000000000,
-                                   100000000000000000,
-                                   1000000000000000000};
-
 // a / b rounded half away from zero (b > 0).
 std::int64_t divide_rounded(std::int64_t a, std::int64_t b) {
   std::int64_t q = a / b;
@@ -45,7 +25,7 @@ Fixed Fixed::from_decimal_slow(std::int64_t mantissa, int decimals) {
     return from_units(mul_sat(whole, kOne));
   }
   if (decimals - kDecimals > 18) return Fixed();
-  return from_units(divide_rounded(mantissa, kPow10[decimals - kDecimals]));
+  return from_units(divide_rounded(mantissa, kPowersOf10[decimals - kDecimals]));
 }
 
 Fixed Fixed::from_double(double value) {
@@ -58,13 +38,13 @@ Fixed Fixed::from_double(double value) {
 std::int64_t Fixed::scaled(int decimals) const {
   if (decimals >= kDecimals) return units_;
   if (decimals < 0) decimals = 0;
-  return divide_rounded(units_, kPow10[kDecimals - decimals]);
+  return divide_rounded(units_, kPowersOf10[kDecimals - decimals]);
 }
 
 Fixed Fixed::rounded(int decimals) const {
   if (decimals >= kDecimals) return *this;
   if (decimals < 0) decimals = 0;
-  return Fixed(mul_sat(scaled(decimals), kPow10[kDecimals - decimals]));
+  return Fixed(mul_sat(scaled(decimals), kPowersOf10[kDecimals - decimals]));
 }
 
 std::size_t Fixed::format(int decimals, char* out) const {

@@ -6,18 +6,13 @@
 
 #include "gcode/core/line.hpp"
 #include "gcode/core/number.hpp"
+#include "gcode/core/text.hpp"
 
 namespace gcode {
 
 namespace {
 
 bool starts_with(std::string_view s, std::string_view prefix) { return s.substr(0, prefix.size()) == prefix; }
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
-  return s;
-}
 
 bool read_number(std::string_view s, double& v) { return parse_number(trim(s), v); }
 

@@ -5,6 +5,7 @@
 #include <new>
 
 #include "gcode/core/number.hpp"
+#include "gcode/core/text.hpp"
 
 namespace gcode {
 
@@ -83,12 +84,6 @@ bool scan_number(const char* p, const char* end, Word& w) {
   }
   w.mantissa = negative ? -static_cast<std::int64_t>(mantissa) : static_cast<std::int64_t>(mantissa);
   return true;
-}
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
-  while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
-  return s;
 }
 
 }  // namespace

@@ -8,7 +8,6 @@ namespace gcode {
 
 namespace {
 
-constexpr double kInch = 25.4;
 constexpr char kAxisLetters[4] = {'X', 'Y', 'Z', 'E'};
 
 // A bare G10/G11 is firmware retraction. RepRapFirmware's "G10 P0 S210" sets
@@ -79,7 +78,7 @@ void apply_motion(MachineState& s, const Line& line, Move& m) {
   }
   if (f != nullptr && f->has_value) {
     double v = f->value();
-    if (v > 0) s.feedrate = inches ? v * kInch : v;
+    if (v > 0) s.feedrate = inches ? v * kMmPerInch : v;
   }
   // The new position is worked out in scalars and only then stored: reading
   // s.position back as a whole right after storing single axes defeats the
@@ -99,7 +98,7 @@ void apply_motion(MachineState& s, const Line& line, Move& m) {
   double dx = end[kX] - start[kX], dy = end[kY] - start[kY], dz = end[kZ] - start[kZ];
   m.z_changed = dz != 0;
   if (m.kind == MoveKind::Arc) {
-    Arc arc = make_arc(line, start[kX], start[kY], end[kX], end[kY], inches ? kInch : 1.0);
+    Arc arc = make_arc(line, start[kX], start[kY], end[kX], end[kY], inches ? kMmPerInch : 1.0);
     m.is_arc_clockwise = line.number == 2;
     if (arc.valid) {
       m.xy_length = arc.length_xy();

@@ -12,6 +12,7 @@
 #include "gcode/core/file_ends.hpp"
 #include "gcode/core/line_reader.hpp"
 #include "gcode/core/number.hpp"
+#include "gcode/core/text.hpp"
 
 namespace gcode {
 
@@ -26,12 +27,6 @@ constexpr std::size_t kMaxCuraSettings = 1u << 20;
 constexpr double kSane = 1e5;
 // A retraction longer than this is a typo or a filament unload, not a retraction.
 constexpr double kMaxRetract = 50;
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
-  return s;
-}
 
 bool number_of(std::string_view text, double& v) { return parse_number(trim(text), v) && std::fabs(v) < kSane; }
 

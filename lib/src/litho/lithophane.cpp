@@ -18,10 +18,6 @@ void require_positive(double v, const char* option) {
   if (!positive(v)) throw std::invalid_argument(fmt::format("{} must be a number above 0", option));
 }
 
-double distance(Point a, Point b) { return std::hypot(b.x - a.x, b.y - a.y); }
-
-Point end_of(const Path& path) { return path.pieces.empty() ? path.start : path.pieces.back().to; }
-
 }  // namespace
 
 LithoOptions LithoOptions::resolved() const {

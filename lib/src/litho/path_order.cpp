@@ -12,10 +12,6 @@ namespace gcode::litho {
 
 namespace {
 
-double distance(Point a, Point b) { return std::hypot(b.x - a.x, b.y - a.y); }
-
-Point end_of(const Path& path) { return path.pieces.empty() ? path.start : path.pieces.back().to; }
-
 bool is_ring(const Path& path) {
   const Point e = end_of(path);
   return !path.pieces.empty() && e.x == path.start.x && e.y == path.start.y;

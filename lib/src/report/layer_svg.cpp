@@ -4,27 +4,23 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <iterator>
 #include <stdexcept>
 
 #include "gcode/core/arc.hpp"
 #include "gcode/report/estimator.hpp"
+#include "gcode/core/machine_state.hpp"
 #include "gcode/core/number.hpp"
 #include "gcode/core/placeholders.hpp"
+#include "gcode/core/text.hpp"
 
 namespace gcode {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDefaultHeight = 0.2;
 constexpr float kJoin = 1e-4f;  // mm: a segment continuing the last point extends its polyline
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
-  return s;
-}
 
 std::string lower(std::string_view s) {
   std::string r(s);
@@ -272,7 +268,7 @@ std::string expand_layer_pattern(std::string_view pattern, int layer) {
 }
 
 LayerDrawer::LayerDrawer(std::function<bool(int)> selected, double filament_diameter)
-    : selected_(std::move(selected)), filament_area_(kPi * filament_diameter * filament_diameter / 4) {}
+    : selected_(std::move(selected)), filament_area_(std::numbers::pi * filament_diameter * filament_diameter / 4) {}
 
 void LayerDrawer::layer(const LayerInfo& layer, const MachineState& before, Emitter& out) {
   out.layer(layer, before);
@@ -360,7 +356,7 @@ void LayerDrawer::line(const TrackedLine& t, Emitter& out) {
     current_.retractions.push_back(static_cast<float>(m.end[kY]));
   }
   if (m.kind == MoveKind::Arc) {
-    Arc arc = make_arc(t.line, m.start[kX], m.start[kY], m.end[kX], m.end[kY], t.before.inches ? 25.4 : 1.0);
+    Arc arc = make_arc(t.line, m.start[kX], m.start[kY], m.end[kX], m.end[kY], t.before.inches ? kMmPerInch : 1.0);
     if (arc.valid) {
       int steps = std::clamp(static_cast<int>(arc.length_xy() / 0.5), 4, 720);
       double px = m.start[kX], py = m.start[kY];

@@ -1,6 +1,7 @@
 #include "gcode/report/layer_table.hpp"
 
 #include <algorithm>
+#include <numbers>
 
 namespace gcode {
 
@@ -64,8 +65,7 @@ double LayerTable::layers_extruded() const {
 }
 
 double filament_mass_g(double length_mm, double diameter_mm, double density_g_cm3) {
-  constexpr double kPi = 3.141592653589793;
-  double area_mm2 = kPi * diameter_mm * diameter_mm / 4;
+  double area_mm2 = std::numbers::pi * diameter_mm * diameter_mm / 4;
   return length_mm * area_mm2 / 1000.0 * density_g_cm3;
 }
 

@@ -11,18 +11,13 @@
 #include <vector>
 
 #include "gcode/core/number.hpp"
+#include "gcode/core/text.hpp"
 
 namespace gcode {
 
 namespace {
 
 constexpr char kAxisLetters[4] = {'X', 'Y', 'Z', 'E'};
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
-  return s;
-}
 
 // "9000,1000" -> 9000: PrusaSlicer keeps normal and silent mode values.
 double first_number(std::string_view key, std::string_view value, bool signed_value = false) {

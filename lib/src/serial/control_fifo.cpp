@@ -20,12 +20,6 @@ namespace gcode::serial {
 
 namespace {
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
-  return s;
-}
-
 // Text a person or script writes: printable ASCII, tabs, UTF-8 bytes.
 bool is_text(unsigned char c) { return c >= 0x20 ? c != 0x7f : c == '\t' || c == '\r'; }
 

@@ -24,7 +24,8 @@ bool contains_nocase(std::string_view s, std::string_view needle) {
   return false;
 }
 
-std::string_view trim(std::string_view s) {
+// White space and the NULs of a board's noisy boot, at either end.
+std::string_view trim_noise(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r' || s.front() == '\0')) s.remove_prefix(1);
   while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r' || s.back() == '\0')) s.remove_suffix(1);
   return s;
@@ -97,11 +98,11 @@ void parse_ok_fields(std::string_view rest, Response& r) {
 // FIRMWARE_URL:, FIRMWARE_VERSION:), blanks around it gone (RepRapFirmware
 // writes "FIRMWARE_NAME: RepRapFirmware for Duet 3 ...").
 std::string_view firmware_name(std::string_view rest) {
-  rest = trim(rest);
+  rest = trim_noise(rest);
   for (std::size_t i = rest.find(' '); i != std::string_view::npos; i = rest.find(' ', i + 1)) {
     std::size_t k = i + 1;
     while (k < rest.size() && ((rest[k] >= 'A' && rest[k] <= 'Z') || rest[k] == '_')) ++k;
-    if (k > i + 1 && k < rest.size() && rest[k] == ':') return trim(rest.substr(0, i));
+    if (k > i + 1 && k < rest.size() && rest[k] == ':') return trim_noise(rest.substr(0, i));
   }
   return rest;
 }
@@ -172,7 +173,7 @@ Response parse_response(std::string_view raw) {
   Response r;
   // A board coming up may send a NUL before its greeting.
   while (!raw.empty() && raw.front() == '\0') raw.remove_prefix(1);
-  std::string_view s = trim(raw);
+  std::string_view s = trim_noise(raw);
   r.text = s;
   if (s.empty()) return r;
   if (cut_by_greeting(s)) {
@@ -198,26 +199,26 @@ Response parse_response(std::string_view raw) {
   }
   if (starts_with_nocase(s, "error:") || starts_with_nocase(s, "!!")) {
     r.kind = ResponseKind::Error;
-    r.text = trim(s.substr(s[0] == '!' ? 2 : 6));
+    r.text = trim_noise(s.substr(s[0] == '!' ? 2 : 6));
     r.error = classify_error(r.text);
     return r;
   }
   std::string_view body = s;
-  if (starts_with_nocase(body, "echo:")) body = trim(body.substr(5));
+  if (starts_with_nocase(body, "echo:")) body = trim_noise(body.substr(5));
   if (starts_with_nocase(body, "busy:")) {
     r.kind = ResponseKind::Busy;
-    r.text = trim(body.substr(5));
+    r.text = trim_noise(body.substr(5));
     return r;
   }
   // Marlin's "//action:pause", Prusa's "// action:paused".
-  if (starts_with_nocase(s, "//") && starts_with_nocase(trim(s.substr(2)), "action:")) {
+  if (starts_with_nocase(s, "//") && starts_with_nocase(trim_noise(s.substr(2)), "action:")) {
     r.kind = ResponseKind::Action;
-    r.text = trim(trim(s.substr(2)).substr(7));
+    r.text = trim_noise(trim_noise(s.substr(2)).substr(7));
     return r;
   }
   if (body.data() != s.data() || starts_with_nocase(s, "//")) {
     r.kind = ResponseKind::Echo;
-    r.text = body.data() != s.data() ? body : trim(s.substr(2));
+    r.text = body.data() != s.data() ? body : trim_noise(s.substr(2));
     // Marlin's 'echo:Unknown command: "M123"', Klipper's '// Unknown command:"M123"'.
     r.unknown_command = starts_with_nocase(r.text, "unknown command");
     // A fatal condition may also arrive as an echo on some firmware versions,
@@ -297,8 +298,8 @@ CapabilityLine read_capability(std::string_view text, FirmwareInfo& info) {
     return text.find(key) != std::string_view::npos;
   };
   // Klipper answers on its ok line: "ok FIRMWARE_NAME:Klipper FIRMWARE_VERSION:...".
-  text = trim(text);
-  if (text.rfind("ok ", 0) == 0) text = trim(text.substr(3));
+  text = trim_noise(text);
+  if (text.rfind("ok ", 0) == 0) text = trim_noise(text.substr(3));
   if (text.rfind("FIRMWARE_NAME:", 0) == 0) {
     said.names_firmware = true;
     info.name = std::string(firmware_name(text.substr(14)));

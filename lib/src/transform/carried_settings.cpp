@@ -4,17 +4,11 @@
 #include <cctype>
 
 #include "gcode/core/line_builder.hpp"
+#include "gcode/core/text.hpp"
 
 namespace gcode {
 
 namespace {
-
-bool iequals(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    if (std::toupper(static_cast<unsigned char>(a[i])) != std::toupper(static_cast<unsigned char>(b[i]))) return false;
-  return true;
-}
 
 // The value of a word that has one, as an exact decimal.
 bool word_value(const Line& line, char letter, Fixed& out) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -9,21 +10,17 @@
 #include "gcode/core/feature.hpp"
 #include "gcode/core/firmware.hpp"
 #include "gcode/core/line_edit.hpp"
+#include "gcode/core/machine_state.hpp"
 #include "gcode/core/number.hpp"
 
 namespace gcode {
 
 namespace {
 
-constexpr double kInch = 25.4;
-constexpr double kPi = 3.141592653589793;
 // Decimals of the factor in the marker comment ("x1.6667" on a ramp).
 constexpr int kNoteDecimals = 4;
 
 __extension__ using Wide = __int128;
-
-constexpr std::int64_t kPow10[] = {1,         10,         100,         1000,         10000,
-                                   100000,    1000000,    10000000,    100000000,    1000000000};
 
 // v x k on exact decimals, rounded half away from zero to 10^-9: F1001 x
 // 1.15 is 1151.15 (F1151.2 at one decimal), where doubles give
@@ -43,7 +40,7 @@ enum class Rounding : std::uint8_t { Nearest, Down, Up };
 // down, so the written number never exceeds the cap; from below, up.
 Fixed round_to(Fixed v, int decimals, Rounding mode) {
   if (mode == Rounding::Nearest) return v.rounded(decimals);
-  std::int64_t step = kPow10[Fixed::kDecimals - decimals];
+  std::int64_t step = Fixed::kPowersOf10[Fixed::kDecimals - decimals];
   std::int64_t u = v.units(), q = u / step;
   if (u % step != 0) {
     if (mode == Rounding::Down && u < 0) --q;
@@ -208,7 +205,7 @@ void SpeedStage::line(const TrackedLine& t, Emitter& out) {
 SpeedStage::Target SpeedStage::target_for(const TrackedLine& t) {
   const Move& m = t.move;
   const bool inches = t.state.inches;
-  const double unit = inches ? kInch : 1.0;
+  const double unit = inches ? kMmPerInch : 1.0;
   const int decimals = std::min(precision_.of('F') + (inches ? 2 : 0), Fixed::kDecimals);
   // Without a flow cap the target depends on the F alone, and runs of moves
   // share one F: the last answer is reused.
@@ -250,7 +247,7 @@ SpeedStage::Target SpeedStage::target_for(const TrackedLine& t) {
   if (options_.max_speed > 0) cap_above(options_.max_speed * 60, &SpeedStats::capped_max_speed);
   if (options_.max_flow > 0 && m.extruding && m.length > 0) {
     // mm^3/s = filament per mm of path x filament area x mm/s of path.
-    double area = kPi / 4 * options_.filament_diameter * options_.filament_diameter;
+    double area = std::numbers::pi / 4 * options_.filament_diameter * options_.filament_diameter;
     double per_mm = m.filament / m.length;
     cap_above(options_.max_flow * 60 / (per_mm * area), &SpeedStats::capped_flow);
   }
@@ -297,7 +294,7 @@ void SpeedStage::feed_move(const TrackedLine& t, Emitter& out) {
     if (editable) {
       if (!change) {
         // Back to the original F, written exactly as the file had it.
-        target.word = Fixed::from_double(t.state.inches ? original / kInch : original);
+        target.word = Fixed::from_double(t.state.inches ? original / kMmPerInch : original);
         ++stats_.restores;
       }
       LineEdit edit(line);

@@ -2,21 +2,21 @@
 
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <cstring>
 #include <stdexcept>
 #include <string>
 
 #include "gcode/core/arc.hpp"
 #include "gcode/core/diagnostics.hpp"
+#include "gcode/core/machine_state.hpp"
 #include "gcode/core/number.hpp"
 
 namespace gcode {
 
 namespace {
 
-constexpr double kInch = 25.4;
-constexpr double kPi = 3.141592653589793;
-constexpr double kPow10[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11};
+constexpr double kDecimalScale[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11};
 // Beyond this a coordinate is junk (X1e300), not a position: such a move is
 // passed through rather than cut into astronomically many pieces.
 constexpr double kMaxCoordinate = 1e6;
@@ -154,8 +154,8 @@ bool Subdivider::plan_move(const TrackedLine& t, Plan& plan) {
 
   // Rounding each written point moves it by up to half a unit per axis; keep
   // that much below the limit so the written pieces stay within it.
-  double scale = t.state.inches ? kInch : 1.0;
-  double slack = 1.8 / kPow10[finest] * scale;
+  double scale = t.state.inches ? kMmPerInch : 1.0;
+  double slack = 1.8 / kDecimalScale[finest] * scale;
   double effective = limit - slack;
   if (effective < limit / 2) effective = limit / 2;
 
@@ -181,7 +181,7 @@ bool Subdivider::plan_move(const TrackedLine& t, Plan& plan) {
 bool Subdivider::plan_axes(const TrackedLine& t, Plan& plan) {
   const Move& move = t.move;
   const MachineState& after = t.state;
-  double scale = after.inches ? kInch : 1.0;
+  double scale = after.inches ? kMmPerInch : 1.0;
   for (int a = 0; a < 4; ++a) {
     AxisPlan& p = plan.axes[static_cast<std::size_t>(a)];
     p.relative = a == kE ? after.relative_e : after.relative_xyz;
@@ -234,7 +234,7 @@ int Subdivider::plan_decimals(const TrackedLine& t, Plan& plan) const {
     p.decimals = std::min(d, 9);
     if (p.relative) {
       double amount = p.raw.empty() ? 0.0 : t.line.value_or(letter, 0);
-      double units = amount * kPow10[p.decimals];
+      double units = amount * kDecimalScale[p.decimals];
       if (!(std::fabs(units) < 9e15)) return -1;
       p.total = to_scaled(amount, p.decimals);
     }
@@ -246,7 +246,7 @@ int Subdivider::plan_decimals(const TrackedLine& t, Plan& plan) const {
 // An arc's chords: how many (within the tolerance, and the length limit),
 // and the words each writes. -1 (with a warning) for an arc that is none.
 double Subdivider::plan_arc(const TrackedLine& t, Plan& plan, double limit, double effective) {
-  double scale = t.state.inches ? kInch : 1.0;
+  double scale = t.state.inches ? kMmPerInch : 1.0;
   const AxisPlan& x = plan.axes[kX];
   const AxisPlan& y = plan.axes[kY];
   plan.geometry = make_arc(t.line, x.start, y.start, x.end, y.end);
@@ -259,7 +259,7 @@ double Subdivider::plan_arc(const TrackedLine& t, Plan& plan, double limit, doub
   double dz = (plan.axes[kZ].end - plan.axes[kZ].start) * scale;
   double length = std::hypot(radius_mm * sweep, dz);
   // A chord of angle t deviates r(1 - cos(t/2)) from its arc; never more than a quarter turn.
-  double max_angle = kPi / 2;
+  double max_angle = std::numbers::pi / 2;
   if (options_.arc_tolerance < radius_mm)
     max_angle = std::min(max_angle, 2 * std::acos(1 - options_.arc_tolerance / radius_mm));
   double pieces = std::ceil(sweep / max_angle);

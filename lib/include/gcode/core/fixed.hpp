@@ -24,13 +24,33 @@ class Fixed {
   static constexpr int kDecimals = 9;
   static constexpr std::int64_t kOne = 1'000'000'000;
   static constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max() / 2;
+  // 10^0 .. 10^18, every power an int64_t holds.
+  static constexpr std::int64_t kPowersOf10[] = {1,
+                                                 10,
+                                                 100,
+                                                 1000,
+                                                 10000,
+                                                 100000,
+                                                 1000000,
+                                                 10000000,
+                                                 100000000,
+                                                 1000000000,
+                                                 10000000000,
+                                                 100000000000,
+                                                 1000000000000,
+                                                 10000000000000,
+                                                 100000000000000,
+                                                 1000000000000000,
+                                                 10000000000000000,
+                                                 100000000000000000,
+                                                 1000000000000000000};
 
   constexpr Fixed() = default;
   static constexpr Fixed from_units(std::int64_t units) { return Fixed(clamp(units)); }
   // mantissa x 10^-decimals, as a word is written ("-.80": -80, 2). Exact
   // for up to nine decimals; more are rounded half away from zero.
   static Fixed from_decimal(std::int64_t mantissa, int decimals) {
-    if (decimals >= 0 && decimals <= kDecimals) return from_units(mul_sat(mantissa, kScale[kDecimals - decimals]));
+    if (decimals >= 0 && decimals <= kDecimals) return from_units(mul_sat(mantissa, kPowersOf10[kDecimals - decimals]));
     return from_decimal_slow(mantissa, decimals);
   }
   // Rounded half away from zero to 10^-9; NaN is 0, infinities clamp.
@@ -61,7 +81,6 @@ class Fixed {
   friend constexpr auto operator<=>(Fixed a, Fixed b) { return a.units_ <=> b.units_; }
 
  private:
-  static constexpr std::int64_t kScale[] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000, 100000000, 1000000000};
   static Fixed from_decimal_slow(std::int64_t mantissa, int decimals);
   constexpr explicit Fixed(std::int64_t units) : units_(units) {}
   static constexpr std::int64_t clamp(std::int64_t u) { return u > kMax ? kMax : (u < -kMax ? -kMax : u); }

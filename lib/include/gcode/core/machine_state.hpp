@@ -18,6 +18,9 @@
 
 namespace gcode {
 
+// Millimetres in the inch that G20 selects.
+inline constexpr double kMmPerInch = 25.4;
+
 enum Axis : int { kX = 0, kY = 1, kZ = 2, kE = 3 };
 
 struct Vec4 {

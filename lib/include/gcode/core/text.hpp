@@ -9,6 +9,9 @@
 namespace gcode {
 
 bool iequals(std::string_view a, std::string_view b);
+// `s` without the white space (C's isspace: blank, tab, CR, LF, VT, FF) at
+// either end.
+std::string_view trim(std::string_view s);
 // The lines of `text` ('\n' or "\r\n" between them), empty ones left out.
 std::vector<std::string> split_lines(std::string_view text);
 

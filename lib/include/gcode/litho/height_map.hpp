@@ -19,6 +19,7 @@
 // The picture keeps its aspect unless both width and height are given. A
 // `border` is a frame at full thickness around the picture (flat: all four
 // sides; cylinder: top and bottom), added outside the picture's area.
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -33,6 +34,8 @@ struct Point {
   double x = 0;
   double y = 0;
 };
+
+inline double distance(Point a, Point b) { return std::hypot(b.x - a.x, b.y - a.y); }
 
 struct HeightMapOptions {
   LithoShape shape = LithoShape::Flat;

@@ -64,6 +64,9 @@ struct Path {
   std::vector<Point> approach;
 };
 
+// Where the path ends: its last piece's end, or its start without pieces.
+inline Point end_of(const Path& path) { return path.pieces.empty() ? path.start : path.pieces.back().to; }
+
 struct LayerStats {
   double band_area = 0;   // mm2 the pieces' strips cover (the layer's cross-section as sampled)
   double volume = 0;      // mm3 of all pieces
