@@ -46,7 +46,7 @@ namespace {
 
 // The start code and first three layers of a fixture in 0.2 mm pieces,
 // written once per run.
-const std::string& pieces_file() {
+const std::string& pause_pieces() {
   static std::string path;
   if (path.empty()) {
     path = gctest::temp_dir() + "/pieces.gcode";
@@ -103,7 +103,7 @@ bool check_cancel_park(const std::vector<Executed>& log, const std::vector<gctes
 }  // namespace
 
 TEST_CASE("gc-send pause: at the end of the request's layer, rushed, resumed exactly, nothing lost", "[gc-send][pause]") {
-  const std::string& file = pieces_file();
+  const std::string& file = pause_pieces();
   std::string text = gctest::read_file(file);
   auto input = gctest::commands_of(text);
   auto layer = layers_of(text);
@@ -177,7 +177,7 @@ namespace {
 // `speed`: the printer runs its moves that many times faster than the
 // file says, and gc-send is not told (its pacer learns it from the answers).
 void check_pause_now(double speed) {
-  const std::string& file = pieces_file();
+  const std::string& file = pause_pieces();
   auto input = gctest::commands_of(gctest::read_file(file));
   for (const char* delay : {"0.3", "0.9"}) {
     INFO("pause now " << delay << " s into layer 1, printer at " << speed << " x");
@@ -279,7 +279,7 @@ TEST_CASE("gc-send: the control FIFO is refused when it is a regular file or wri
 }
 
 TEST_CASE("gc-send: cancel parks, turns heaters off and exits 0, and junk in the FIFO changes nothing", "[gc-send][pause]") {
-  const std::string& file = pieces_file();
+  const std::string& file = pause_pieces();
   PauseRun r = send_with_control(file, "time-scale=5,instant-moves,heat-rate=1000", "",
                                  "head -c 200000 /dev/urandom > \"$F\"; echo > \"$F\"; echo status > \"$F\"; echo bogus > \"$F\"; "
                                  "sleep 0.3; "
@@ -319,7 +319,7 @@ TEST_CASE("gc-send: a cancel in absolute E parks from the last command on its wa
 }
 
 TEST_CASE("gc-send: a first Ctrl-C is a cancel: safe end, exit 0", "[gc-send][pause]") {
-  const std::string& file = pieces_file();
+  const std::string& file = pause_pieces();
   std::string dir = gctest::temp_dir();
   std::string log = dir + "/executed.log";
   auto r = gctest::run(quote(tool_path("gc-send")) + " --no-control --bed 250x210 --port virtual:time-scale=20,heat-rate=1000,log=" +
@@ -335,7 +335,7 @@ TEST_CASE("gc-send: a first Ctrl-C is a cancel: safe end, exit 0", "[gc-send][pa
 
 TEST_CASE("gc-send: commands typed while paused are put back before the resume, and speed F scales what follows",
           "[gc-send][pause]") {
-  const std::string& file = pieces_file();
+  const std::string& file = pause_pieces();
   auto input = gctest::commands_of(gctest::read_file(file));
   PauseRun r = send_with_control(
       file, "time-scale=20,instant-moves,heat-rate=1000", "--no-pace",
@@ -383,7 +383,7 @@ TEST_CASE("gc-send: commands typed while paused are put back before the resume, 
 }
 
 TEST_CASE("gc-send: insert FILE while paused prints its moves, then the resume returns exactly", "[gc-send][pause]") {
-  const std::string& file = pieces_file();
+  const std::string& file = pause_pieces();
   auto input = gctest::commands_of(gctest::read_file(file));
   std::string extra = gctest::temp_dir() + "/tab.gcode";
   // A small square on the top surface, in absolute E from its own origin.
@@ -409,7 +409,7 @@ TEST_CASE("gc-send: insert FILE while paused prints its moves, then the resume r
 }
 
 TEST_CASE("gc-send: a pause asked in the start code comes right before layer 1", "[gc-send][pause]") {
-  const std::string& file = pieces_file();
+  const std::string& file = pause_pieces();
   std::string text = gctest::read_file(file);
   auto input = gctest::commands_of(text);
   auto layer = layers_of(text);
@@ -452,7 +452,7 @@ TEST_CASE("gc-send: a pause on a file without a bed retracts and lifts where it 
           "[gc-send][pause]") {
   // The cut fixture has lost its settings: no bed, no height. --max-z 1 (the
   // printer's height) in the second run stops the lift below the usual 2 mm.
-  const std::string& file = pieces_file();
+  const std::string& file = pause_pieces();
   auto input = gctest::commands_of(gctest::read_file(file));
   for (const char* max_z : {"", "--max-z 1"}) {
     INFO("options: " << max_z);
@@ -496,7 +496,7 @@ TEST_CASE("gc-send: a pause on a file without a bed retracts and lifts where it 
 }
 
 TEST_CASE("gc-send: a cancel on a file without a bed retracts and lifts before the heaters go off", "[gc-send][pause]") {
-  const std::string& file = pieces_file();
+  const std::string& file = pause_pieces();
   PauseRun r = send_with_control(file, "time-scale=5,instant-moves,heat-rate=1000", "",
                                  "at_layer 1; echo cancel > \"$F\"", "");
   INFO(r.result.err);

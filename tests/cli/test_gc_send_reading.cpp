@@ -24,10 +24,10 @@ using gctest::send_with_control;
 
 namespace {
 
-constexpr const char* kFixture = "prusa_cube_0.2_mk3s_rel_zhop.gcode";
+constexpr const char* kCubeFixture = "prusa_cube_0.2_mk3s_rel_zhop.gcode";
 // Moves take their time (at 50 times the speed): layer 1 lasts long enough
 // for the script to see it begin.
-constexpr const char* kPrinter = "time-scale=50,heat-rate=1000";
+constexpr const char* kVirtualSpec = "time-scale=50,heat-rate=1000";
 // Once a layer runs, pause (the rest of the layer, then park), then resume;
 // the status file while paused and at the end go to standard output.
 constexpr const char* kPauseInALayer =
@@ -39,7 +39,7 @@ constexpr const char* kPauseInALayer =
 // `keep` (false: left out) before it is written.
 template <class Keep>
 std::string fixture_layers(int layers, Keep keep) {
-  std::string text = gctest::read_file(gctest::fixture_path(kFixture)), out;
+  std::string text = gctest::read_file(gctest::fixture_path(kCubeFixture)), out;
   gcode::MemoryLineSplitter split(text);
   gcode::RawLine raw;
   int layer = 0;
@@ -94,7 +94,7 @@ TEST_CASE("gc-send --layer-marker: the layers gc-send counts and pauses at are t
 
   for (bool marked : {false, true}) {
     INFO((marked ? "--layer-marker ^PLY" : "the built-in markers"));
-    PauseRun r = send_with_control(file, kPrinter, marked ? "--no-pace --layer-marker '^PLY'" : "--no-pace",
+    PauseRun r = send_with_control(file, kVirtualSpec, marked ? "--no-pace --layer-marker '^PLY'" : "--no-pace",
                                    kPauseInALayer);
     INFO(r.result.err);
     REQUIRE(r.result.status == 0);
@@ -128,7 +128,7 @@ TEST_CASE("gc-send --e-mode: a file that never says M82/M83 is read as told, and
 
   for (const char* mode : {"relative", "absolute", "auto"}) {
     INFO("--e-mode " << mode);
-    PauseRun r = send_with_control(file, kPrinter, std::string("--no-pace --e-mode ") + mode, kPauseInALayer);
+    PauseRun r = send_with_control(file, kVirtualSpec, std::string("--no-pace --e-mode ") + mode, kPauseInALayer);
     INFO(r.result.err);
     REQUIRE(r.result.status == 0);
     const bool guessed = std::string(mode) == "auto";

@@ -21,21 +21,18 @@ using gctest::send_through_pty;
 namespace {
 
 // The first 6000 lines of a real slicer file cut into 0.2 mm pieces.
-const std::string& pieces_file() { return gctest::pieces_of("prusa_cube_0.2_mk3s_rel_zhop.gcode", 6000); }
-
-// Real moves (the planner runs on during the drop), 200 times real time.
-const std::string kPrinter = "--time-scale 200 --heat-rate 1000 ";
+const std::string& drop_pieces() { return gctest::pieces_of("prusa_cube_0.2_mk3s_rel_zhop.gcode", 6000); }
 
 }  // namespace
 
 TEST_CASE("gc-send: a link drop in the start code or mid-layer while the printer runs on: the print completes, every move once, in order",
           "[gc-send][reconnect]") {
-  auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
+  auto expected = gctest::commands_of(gctest::read_file(drop_pieces()));
   REQUIRE(expected.size() > 5000);
   // In the start code and mid-layer; 100 simulated seconds are half a
   // second of wall time without a port.
   for (const char* fault : {"drop=20@line=4", "drop=100@line=3000"}) {
-    PtyRun r = send_through_pty(pieces_file(), "--reconnect 30", kPrinter + "--fault " + fault);
+    PtyRun r = send_through_pty(drop_pieces(), "--reconnect 30", gctest::kFastPrinter + "--fault " + fault);
     INFO(fault << ": " << r.result.err);
     // One log over both sessions.
     require_exact(r, expected);
@@ -50,9 +47,9 @@ TEST_CASE("gc-send: a link drop in the start code or mid-layer while the printer
 
 TEST_CASE("gc-send: a port that stays away longer than --reconnect stops the print cleanly, saying so",
           "[gc-send][reconnect]") {
-  auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
+  auto expected = gctest::commands_of(gctest::read_file(drop_pieces()));
   // 2000 simulated seconds are 10 s of wall time; gc-send waits 1 s.
-  PtyRun r = send_through_pty(pieces_file(), "--reconnect 1", kPrinter + "--fault drop=2000@line=1000");
+  PtyRun r = send_through_pty(drop_pieces(), "--reconnect 1", gctest::kFastPrinter + "--fault drop=2000@line=1000");
   INFO(r.result.err);
   CHECK(r.result.status == 1);
   CHECK(r.result.err.find("did not come back within 1 s (--reconnect)") != std::string::npos);
@@ -77,9 +74,9 @@ TEST_CASE("gc-send: while it waits for the port the status file says reconnectin
                        " 2>/dev/null && break; sleep 0.02; done\n"
                        "grep -o '\"state\": *\"[a-z]*\"' " + quote(status) + " >&2\n"
                        "echo status > " + quote(fifo) + "; sleep 0.3; echo cancel > " + quote(fifo);
-  PtyRun r = send_through_pty(pieces_file(),
+  PtyRun r = send_through_pty(drop_pieces(),
                               "--reconnect 120 --status-file " + quote(status) + " --control " + quote(fifo),
-                              kPrinter + "--fault drop=12000@line=1000", during);
+                              gctest::kFastPrinter + "--fault drop=12000@line=1000", during);
   INFO(r.result.err);
   CHECK(r.result.status == 1);
   CHECK(r.result.err.find("\"reconnecting\"") != std::string::npos);  // the status file

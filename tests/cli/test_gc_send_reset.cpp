@@ -31,18 +31,16 @@ namespace {
 
 // The first 9000 lines of a real slicer file (relative E, z-hop) cut into
 // 0.2 mm pieces: the start code, layer 1 and the start of layer 2.
-const std::string& pieces_file() { return gctest::pieces_of("prusa_cube_0.2_mk3s_rel_zhop.gcode", 9000); }
+const std::string& reset_pieces() { return gctest::pieces_of("prusa_cube_0.2_mk3s_rel_zhop.gcode", 9000); }
 
 // Absolute E (a G92 E must put E back exactly), Cura's 5 mm retractions.
 const std::string& absolute_file() { return gctest::pieces_of("cura_cube_0.2_abs_zhop_skirt.gcode", 6000); }
-
-const std::string kPrinter = "--time-scale 200 --heat-rate 1000 ";
 
 }  // namespace
 
 TEST_CASE("gc-send: a printer reset mid-layer, at a layer change or in the start code comes back and finishes, its greeting whole or after a cut line",
           "[gc-send][reset]") {
-  auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
+  auto expected = gctest::commands_of(gctest::read_file(reset_pieces()));
   struct Moment {
     const char* fault;
     const char* greeting;
@@ -56,8 +54,8 @@ TEST_CASE("gc-send: a printer reset mid-layer, at a layer change or in the start
                    Moment{"reset@line=4", "start", "before anything was printed; starting the print again"},
                    Moment{"reset@line=4", "cut", "before anything was printed; starting the print again"},
                    Moment{"reset@line=3000", "cut", "going back to line "}}) {
-    PtyRun r = send_through_pty(pieces_file(), "--no-journal",
-                                kPrinter + "--fault " + m.fault + " --greeting " + m.greeting);
+    PtyRun r = send_through_pty(reset_pieces(), "--no-journal",
+                                gctest::kFastPrinter + "--fault " + m.fault + " --greeting " + m.greeting);
     INFO(m.fault << " " << m.greeting << ": " << r.result.err);
     REQUIRE(r.result.status == 0);
     CHECK(r.result.err.find("the printer reset (it said \"start\")") != std::string::npos);
@@ -77,7 +75,7 @@ TEST_CASE("gc-send: each form of the greeting is a reset, an absolute-E print ge
   auto expected = gctest::commands_of(gctest::read_file(absolute_file()));
   for (const char* greeting : {"nul", "twice", "external", "cut"}) {
     PtyRun r = send_through_pty(absolute_file(), "--no-journal",
-                                kPrinter + "--greeting " + greeting + " --fault reset@line=4000");
+                                gctest::kFastPrinter + "--greeting " + greeting + " --fault reset@line=4000");
     INFO(greeting << ": " << r.result.err);
     REQUIRE(r.result.status == 0);
     gctest::ResetFigures f = require_resumed(r.log_text, expected);
@@ -88,8 +86,8 @@ TEST_CASE("gc-send: each form of the greeting is a reset, an absolute-E print ge
 
 TEST_CASE("gc-send: a printer that restarted while its port was away comes back after the reconnect",
           "[gc-send][reset][reconnect]") {
-  auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
-  PtyRun r = send_through_pty(pieces_file(), "--no-journal --reconnect 30", kPrinter + "--fault drop-reset=50@line=2000");
+  auto expected = gctest::commands_of(gctest::read_file(reset_pieces()));
+  PtyRun r = send_through_pty(reset_pieces(), "--no-journal --reconnect 30", gctest::kFastPrinter + "--fault drop-reset=50@line=2000");
   INFO(r.result.err);
   REQUIRE(r.result.status == 0);
   CHECK(r.result.err.find("lost the printer's port") != std::string::npos);
@@ -98,7 +96,7 @@ TEST_CASE("gc-send: a printer that restarted while its port was away comes back 
 }
 
 TEST_CASE("gc-send: a reset while paused resumes into the pause, the resume returns exactly", "[gc-send][reset][pause]") {
-  auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
+  auto expected = gctest::commands_of(gctest::read_file(reset_pieces()));
   std::string dir = gctest::temp_dir();
   std::string status = dir + "/status.json", fifo = dir + "/control";
   auto wait_for = [&](const std::string& state) {
@@ -107,10 +105,10 @@ TEST_CASE("gc-send: a reset while paused resumes into the pause, the resume retu
   };
   std::string during = "sleep 0.15; echo pause > " + quote(fifo) + "\n" + wait_for("paused") +
                        "kill -USR1 $vp; sleep 0.3\n" + wait_for("paused") + "echo resume > " + quote(fifo);
-  PtyRun r = send_through_pty(pieces_file(),
+  PtyRun r = send_through_pty(reset_pieces(),
                               "--no-journal --rush 1 --status-file " + quote(status) + " --control " + quote(fifo) +
                                   " --progress-interval 0.05",
-                              kPrinter, during);
+                              gctest::kFastPrinter, during);
   INFO(r.result.err);
   REQUIRE(r.result.status == 0);
   CHECK(r.result.err.find("the printer reset") != std::string::npos);
@@ -123,7 +121,7 @@ TEST_CASE("gc-send: a reset while paused resumes into the pause, the resume retu
 
 TEST_CASE("gc-send --delta: a reset stops the print with the gc-relayer recipe, nothing more sent",
           "[gc-send][reset]") {
-  PtyRun r = send_through_pty(pieces_file(), "--no-journal --delta", kPrinter + "--fault reset@line=3000");
+  PtyRun r = send_through_pty(reset_pieces(), "--no-journal --delta", gctest::kFastPrinter + "--fault reset@line=3000");
   INFO(r.result.err);
   CHECK(r.result.status == 1);
   CHECK(r.result.err.find("cannot home X and Y without Z") != std::string::npos);
@@ -181,9 +179,9 @@ gctest::RunResult killed_while_pausing(const std::string& dir, const std::string
       quote(tool_path("gc-virtual-printer")) + " -q --time-scale 20 " + printer_args + " --link " + quote(port) +
       " --log " + quote(dir + "/executed.log") + " & vp=$!\n" +
       "for i in $(seq 500); do [ -e " + quote(port) + " ] && break; sleep 0.01; done\n" + send + " -q " +
-      quote(pieces_file()) + " 2>/dev/null & gs=$!\nsleep 1; echo pause now > " + quote(fifo) + "\n" + kill_when +
+      quote(reset_pieces()) + " 2>/dev/null & gs=$!\nsleep 1; echo pause now > " + quote(fifo) + "\n" + kill_when +
       "\nkill -9 $gs; wait $gs 2>/dev/null; rm -f " + quote(status) + "\n" + between + "\n" + send + " --resume " +
-      quote(journal) + " " + quote(pieces_file()) + " & gs=$!\n" + wait_paused(status) +
+      quote(journal) + " " + quote(reset_pieces()) + " & gs=$!\n" + wait_paused(status) +
       "kill -0 $gs && timeout 10 sh -c 'echo resume > " + quote(fifo) + "'\n" +
       "wait $gs; s=$?; kill $vp; wait $vp; exit $s";
   return run(script);
@@ -193,10 +191,10 @@ gctest::RunResult killed_while_pausing(const std::string& dir, const std::string
 
 TEST_CASE("gc-send --resume after kill -9 and a printer reset: back to the print, every command once but the re-run",
           "[gc-send][reset][resume]") {
-  auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
+  auto expected = gctest::commands_of(gctest::read_file(reset_pieces()));
   std::string dir = gctest::temp_dir();
   // The reset comes while the printer still drains what it took.
-  auto r = killed_then(dir, pieces_file(), 2, "kill -USR1 $vp; sleep 0.3");
+  auto r = killed_then(dir, reset_pieces(), 2, "kill -USR1 $vp; sleep 0.3");
   INFO(r.err);
   REQUIRE(r.status == 0);
   CHECK(r.err.find("resuming: the printer reset since the print stopped (it greeted again); going back to input "
@@ -207,7 +205,7 @@ TEST_CASE("gc-send --resume after kill -9 and a printer reset: back to the print
 
 TEST_CASE("gc-send --resume after kill -9: a reset in the resumed print comes back too",
           "[gc-send][reset][resume]") {
-  auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
+  auto expected = gctest::commands_of(gctest::read_file(reset_pieces()));
   // (The resumed gc-send runs in the background meanwhile: `then` starts a
   // subshell that resets the printer once it has run `after` commands of
   // the resumed print. Fewer than its planner holds: the way back is the
@@ -216,7 +214,7 @@ TEST_CASE("gc-send --resume after kill -9: a reset in the resumed print comes ba
     INFO("reset " << after << " commands into the resumed print");
     std::string dir = gctest::temp_dir();
     const std::string log = quote(dir + "/executed.log");
-    auto r = killed_then(dir, pieces_file(), 1.5,
+    auto r = killed_then(dir, reset_pieces(), 1.5,
                          "sleep 0.3; n0=$(wc -l < " + log + ")\n(while [ $(wc -l < " + log + ") -lt $((n0 + " +
                              std::to_string(after) + ")) ]; do sleep 0.002; done; kill -USR1 $vp) &");
     INFO(r.err);
@@ -229,7 +227,7 @@ TEST_CASE("gc-send --resume after kill -9: a reset in the resumed print comes ba
 
 TEST_CASE("gc-send killed inside the way back after a printer reset: --resume makes the way back again",
           "[gc-send][reset][resume]") {
-  auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
+  auto expected = gctest::commands_of(gctest::read_file(reset_pieces()));
   // gc-send is killed once the printer has acknowledged `after` lines of
   // the resume sequence (heating, G92 Z, lift, G28 X Y, travel, descent,
   // prime, modes; 0: as it goes out): the printer keeps running, and took
@@ -241,7 +239,7 @@ TEST_CASE("gc-send killed inside the way back after a printer reset: --resume ma
     std::string dir = gctest::temp_dir();
     const std::string journal = quote(dir + "/print.journal");
     const std::string acked = "$(awk '/restore=[1-9]/{r=1} r && /^A /' " + journal + " 2>/dev/null | wc -l)";
-    auto r = killed_when(dir, pieces_file(),
+    auto r = killed_when(dir, reset_pieces(),
                          "for i in $(seq 5000); do grep -q 'restore=[1-9]' " + journal + " 2>/dev/null && [ " + acked +
                              " -ge " + std::to_string(after) + " ] && break; sleep 0.002; done",
                          "sleep 0.5", "", "--heat-rate 100 --fault reset@line=2500");
@@ -257,7 +255,7 @@ TEST_CASE("gc-send killed inside the way back after a printer reset: --resume ma
 
 TEST_CASE("gc-send --resume of a print killed while paused goes back into the pause, the printer kept running or reset",
           "[gc-send][reset][resume][pause]") {
-  auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
+  auto expected = gctest::commands_of(gctest::read_file(reset_pieces()));
   for (bool reset : {false, true}) {
     INFO((reset ? "reset" : "kept running"));
     std::string dir = gctest::temp_dir();
@@ -304,7 +302,7 @@ void require_input_positions(const std::string& log_text, const std::vector<gcte
 
 TEST_CASE("gc-send --resume of a print killed inside its pause block: the rest of the block, parked, an exact return",
           "[gc-send][reset][resume][pause]") {
-  auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
+  auto expected = gctest::commands_of(gctest::read_file(reset_pieces()));
   // A long block (park, M400, messages, a beep) that goes out a little at a
   // time: a 40-byte window, a printer of one planner block and one queue
   // entry. gc-send is killed once `after` acknowledgements follow the
@@ -336,12 +334,12 @@ TEST_CASE("gc-send --resume of a print killed inside its pause block: the rest o
 
 TEST_CASE("gc-send: printer resets at seeded random moments: each print comes back and finishes",
           "[gc-send][reset]") {
-  auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
+  auto expected = gctest::commands_of(gctest::read_file(reset_pieces()));
   std::mt19937 rng(22);
   std::uniform_int_distribution<int> line(5, static_cast<int>(expected.size()) - 50);
   for (int round = 0; round < 4; ++round) {
     const std::string fault = "reset@line=" + std::to_string(line(rng));
-    PtyRun r = send_through_pty(pieces_file(), "--no-journal", kPrinter + "--fault " + fault);
+    PtyRun r = send_through_pty(reset_pieces(), "--no-journal", gctest::kFastPrinter + "--fault " + fault);
     INFO(fault << ": " << r.result.err);
     REQUIRE(r.result.status == 0);
     CHECK(require_resumed(r.log_text, expected).resets == 1);
@@ -352,11 +350,11 @@ TEST_CASE("gc-send --resume --delta after a reset: refused with the gc-relayer r
           "[gc-send][reset][resume]") {
   std::string dir = gctest::temp_dir();
   // The printer drains what it took, then resets.
-  auto r = killed_then(dir, pieces_file(), 1.5, "sleep 1; kill -USR1 $vp; sleep 0.3", "--delta");
+  auto r = killed_then(dir, reset_pieces(), 1.5, "sleep 1; kill -USR1 $vp; sleep 0.3", "--delta");
   INFO(r.err);
   CHECK(r.status == 1);
   CHECK(r.err.find("cannot home X and Y without Z") != std::string::npos);
-  CHECK(r.err.find("gc-relayer --resume-from-z <measured Z> " + pieces_file() + " > resume.gcode") !=
+  CHECK(r.err.find("gc-relayer --resume-from-z <measured Z> " + reset_pieces() + " > resume.gcode") !=
         std::string::npos);
   auto log = gctest::read_reset_log(gctest::read_file(dir + "/executed.log"));
   REQUIRE(log.sessions.size() == 2);
@@ -365,7 +363,7 @@ TEST_CASE("gc-send --resume --delta after a reset: refused with the gc-relayer r
 
 TEST_CASE("gc-send --resume through a link drop: before it starts, while it asks the printer, in the way back",
           "[gc-send][reset][resume][reconnect]") {
-  auto expected = gctest::commands_of(gctest::read_file(pieces_file()));
+  auto expected = gctest::commands_of(gctest::read_file(reset_pieces()));
   // Killed inside the way back after a reset (as above), then the link
   // drops `after` seconds into the resumed session (-1: just before it
   // starts, the port is away); the drop lasts 0.25 s (5 simulated).
@@ -377,7 +375,7 @@ TEST_CASE("gc-send --resume through a link drop: before it starts, while it asks
     const std::string acked = "$(awk '/restore=[1-9]/{r=1} r && /^A /' " + journal + " 2>/dev/null | wc -l)";
     const std::string drop = after < 0 ? "sleep 0.5; kill -USR2 $vp; sleep 0.05"
                                        : "sleep 0.5; (sleep " + std::to_string(after) + "; kill -USR2 $vp) &";
-    auto r = killed_when(dir, pieces_file(),
+    auto r = killed_when(dir, reset_pieces(),
                          "for i in $(seq 5000); do grep -q 'restore=[1-9]' " + journal + " 2>/dev/null && [ " + acked +
                              " -ge 2 ] && break; sleep 0.002; done",
                          drop, "--reconnect 60", "--heat-rate 100 --fault reset@line=2500");

@@ -12,21 +12,19 @@
 
 using gctest::quote;
 using gctest::read_file;
+using gctest::pair_file;
+using gctest::pair_part;
 using gctest::run;
 
 namespace {
 
-const gctest::PairFile& pair(const std::string& name) { return gctest::pair_file(name); }
-gctest::SpliceSegment part(const std::string& name, int first, int end, double shift = 0, double scale = 1) {
-  return gctest::pair_part(name, first, end, shift, scale);
-}
 constexpr int kEnd = gctest::kToEnd;
-double height(const std::string& name, int layer) { return pair(name).height(layer); }
+double height(const std::string& name, int layer) { return pair_file(name).height(layer); }
 
 std::string swap(const std::string& args) { return gctest::tool_command("gc-swap-layer", args); }
 
 gctest::RunResult swap_on(const std::string& name, const std::string& args) {
-  return run(swap(args + " " + quote(pair(name).path)));
+  return run(swap(args + " " + quote(pair_file(name).path)));
 }
 
 gctest::SpliceCheck checked(const std::string& out, const std::vector<gctest::SpliceSegment>& segments) {
@@ -36,7 +34,7 @@ gctest::SpliceCheck checked(const std::string& out, const std::vector<gctest::Sp
   return c;
 }
 
-std::string with(const std::string& name) { return quote(pair(name).path); }
+std::string with(const std::string& name) { return quote(pair_file(name).path); }
 
 const std::string kCura = "cura_block_0.2_infill20.gcode";
 const std::string kCuraDense = "cura_block_0.2_infill60.gcode";
@@ -52,14 +50,16 @@ TEST_CASE("gc-swap-layer --repeat prints a layer again and raises the rest by it
     auto r = swap_on(name, "--repeat 5");
     REQUIRE(r.status == 0);
     CHECK(r.err == "");
-    gctest::SpliceCheck c = checked(r.out, {part(name, 0, 6), part(name, 5, 6, h), part(name, 6, kEnd, h)});
+    gctest::SpliceCheck c =
+        checked(r.out, {pair_part(name, 0, 6), pair_part(name, 5, 6, h), pair_part(name, 6, kEnd, h)});
     CHECK(c.seams.size() == 2);
-    CHECK(c.top_z == Approx(pair(name).top + h));  // the print is one layer taller
+    CHECK(c.top_z == Approx(pair_file(name).top + h));  // the print is one layer taller
     auto three = swap_on(name, "--repeat 5x3");
     REQUIRE(three.status == 0);
-    gctest::SpliceCheck c3 = checked(three.out, {part(name, 0, 6), part(name, 5, 6, h), part(name, 5, 6, 2 * h),
-                                                 part(name, 5, 6, 3 * h), part(name, 6, kEnd, 3 * h)});
-    CHECK(c3.top_z == Approx(pair(name).top + 3 * h));
+    gctest::SpliceCheck c3 =
+        checked(three.out, {pair_part(name, 0, 6), pair_part(name, 5, 6, h), pair_part(name, 5, 6, 2 * h),
+                            pair_part(name, 5, 6, 3 * h), pair_part(name, 6, kEnd, 3 * h)});
+    CHECK(c3.top_z == Approx(pair_file(name).top + 3 * h));
   }
 }
 
@@ -69,9 +69,9 @@ TEST_CASE("gc-swap-layer --skip leaves layers out and lowers the rest by their t
     const double removed = height(name, 5) + height(name, 6) + height(name, 7);
     auto r = swap_on(name, "--skip 5-7");
     REQUIRE(r.status == 0);
-    gctest::SpliceCheck c = checked(r.out, {part(name, 0, 5), part(name, 8, kEnd, -removed)});
+    gctest::SpliceCheck c = checked(r.out, {pair_part(name, 0, 5), pair_part(name, 8, kEnd, -removed)});
     CHECK(c.seams.size() == 1);
-    CHECK(c.top_z == Approx(pair(name).top - removed));  // exactly the removed thickness lower
+    CHECK(c.top_z == Approx(pair_file(name).top - removed));  // exactly the removed thickness lower
   }
 }
 
@@ -82,8 +82,9 @@ TEST_CASE("gc-swap-layer --skip --keep-z keeps every Z and scales the next layer
     REQUIRE(r.status == 0);
     CHECK(r.err.find("over-extrudes by design") != std::string::npos);
     // Layer 8 carries its own 0.2 mm and the 0.6 mm left out: x4.
-    gctest::SpliceCheck c = checked(r.out, {part(name, 0, 5), part(name, 8, 9, 0, 4), part(name, 9, kEnd)});
-    CHECK(c.top_z == Approx(pair(name).top));
+    gctest::SpliceCheck c =
+        checked(r.out, {pair_part(name, 0, 5), pair_part(name, 8, 9, 0, 4), pair_part(name, 9, kEnd)});
+    CHECK(c.top_z == Approx(pair_file(name).top));
   }
 }
 
@@ -93,12 +94,13 @@ TEST_CASE("gc-swap-layer --layer --with replaces layers by the other file's at t
     auto r = swap_on(name, "--layer 5-9 --with " + with(other));
     REQUIRE(r.status == 0);
     // Consecutive layers of the other file follow each other without a seam.
-    gctest::SpliceCheck c = checked(r.out, {part(name, 0, 5), part(other, 5, 10), part(name, 10, kEnd)});
+    gctest::SpliceCheck c = checked(r.out, {pair_part(name, 0, 5), pair_part(other, 5, 10), pair_part(name, 10, kEnd)});
     CHECK(c.seams.size() == 2);
   }
   // The other file's temperature for its layers, the input's again after them.
   auto r = swap_on(kPrusa, "--layer 5-9 --with " + with(kPrusaDense));
-  gctest::SpliceCheck c = checked(r.out, {part(kPrusa, 0, 5), part(kPrusaDense, 5, 10), part(kPrusa, 10, kEnd)});
+  gctest::SpliceCheck c =
+      checked(r.out, {pair_part(kPrusa, 0, 5), pair_part(kPrusaDense, 5, 10), pair_part(kPrusa, 10, kEnd)});
   CHECK(c.seams.at(0).after.hotend_target[0] == 220);
   CHECK(c.seams.at(1).after.hotend_target[0] == 215);
   auto& first = c.seams.at(0).lines;
@@ -112,57 +114,59 @@ TEST_CASE("gc-swap-layer --with FILE:LAYERS places the named layers at the repla
   // Layer 12 (Z 2.4) by layer 6 of the dense file (Z 1.2): 1.2 mm up.
   auto r = swap_on(kCura, "--layer 12 --with " + with(kCuraDense) + ":6");
   REQUIRE(r.status == 0);
-  checked(r.out, {part(kCura, 0, 12), part(kCuraDense, 6, 7, 1.2), part(kCura, 13, kEnd)});
+  checked(r.out, {pair_part(kCura, 0, 12), pair_part(kCuraDense, 6, 7, 1.2), pair_part(kCura, 13, kEnd)});
   auto by_height = swap_on(kCura, "--layer @2.4 --with " + with(kCuraDense) + ":@1.2");
   CHECK(by_height.out == r.out);
 }
 
 TEST_CASE("gc-swap-layer --insert-after prints a block on top of a layer and raises the rest", "[gc-swap-layer]") {
   const std::string tab = "cura_tab_0.2.gcode";
-  const double z10 = pair(kCura).layers.z[9];
-  const double tab_height = pair(tab).layers.z.back();
+  const double z10 = pair_file(kCura).layers.z[9];
+  const double tab_height = pair_file(tab).layers.z.back();
   auto r = swap_on(kCura, "--insert-after 10 --file " + with(tab));
   REQUIRE(r.status == 0);
-  gctest::SpliceCheck c = checked(r.out, {part(kCura, 0, 11), part(tab, 1, pair(tab).layers.count() + 1, z10),
-                                          part(kCura, 11, kEnd, tab_height)});
-  CHECK(c.top_z == Approx(pair(kCura).top + tab_height));
+  gctest::SpliceCheck c =
+      checked(r.out, {pair_part(kCura, 0, 11), pair_part(tab, 1, pair_file(tab).layers.count() + 1, z10),
+                      pair_part(kCura, 11, kEnd, tab_height)});
+  CHECK(c.top_z == Approx(pair_file(kCura).top + tab_height));
 }
 
 TEST_CASE("gc-swap-layer applies several edits in layer order", "[gc-swap-layer]") {
   auto r = swap_on(kCura, "--repeat 7x2 --skip 3 --layer 12-13 --with " + with(kCuraDense));
   REQUIRE(r.status == 0);
   // Layer 3 out (-0.2), layer 7 twice more (+0.4): +0.2 from layer 8 on.
-  checked(r.out, {part(kCura, 0, 3), part(kCura, 4, 8, -0.2), part(kCura, 7, 8, 0), part(kCura, 7, 8, 0.2),
-                  part(kCura, 8, 12, 0.2), part(kCuraDense, 12, 14, 0.2), part(kCura, 14, kEnd, 0.2)});
+  checked(r.out,
+          {pair_part(kCura, 0, 3), pair_part(kCura, 4, 8, -0.2), pair_part(kCura, 7, 8, 0), pair_part(kCura, 7, 8, 0.2),
+           pair_part(kCura, 8, 12, 0.2), pair_part(kCuraDense, 12, 14, 0.2), pair_part(kCura, 14, kEnd, 0.2)});
 }
 
 TEST_CASE("gc-swap-layer rewrites a file in the other E mode into the input's", "[gc-swap-layer]") {
   auto r = swap_on(kCura, "--layer 8 --with " + with("cura_block_0.2_infill60_rel.gcode"));
   REQUIRE(r.status == 0);
   CHECK(r.err.find("uses relative E and the output absolute") != std::string::npos);
-  gctest::SpliceSegment block = part("cura_block_0.2_infill60_rel.gcode", 8, 9);
+  gctest::SpliceSegment block = pair_part("cura_block_0.2_infill60_rel.gcode", 8, 9);
   block.e_converted = true;
-  checked(r.out, {part(kCura, 0, 8), block, part(kCura, 9, kEnd)});
+  checked(r.out, {pair_part(kCura, 0, 8), block, pair_part(kCura, 9, kEnd)});
   CHECK(r.out.find("M83") == std::string::npos);
 }
 
 TEST_CASE("gc-swap-layer on standard input, with CRLF endings, and -i", "[gc-swap-layer]") {
-  auto piped = run(swap("--repeat 5 -"), pair(kCura).text);
+  auto piped = run(swap("--repeat 5 -"), pair_file(kCura).text);
   REQUIRE(piped.status == 0);
   CHECK(piped.out == swap_on(kCura, "--repeat 5").out);
 
   std::string crlf;
-  for (char ch : pair(kCura).text) crlf += ch == '\n' ? std::string("\r\n") : std::string(1, ch);
+  for (char ch : pair_file(kCura).text) crlf += ch == '\n' ? std::string("\r\n") : std::string(1, ch);
   auto r = run(swap("--repeat 5"), crlf);
   REQUIRE(r.status == 0);
   for (const std::string& l : gctest::split_lines(r.out)) REQUIRE(l.substr(l.size() - 2) == "\r\n");
 
   std::string dir = gctest::temp_dir();
   std::string copy = dir + "/part.gcode";
-  gctest::write_file(copy, pair(kCura).text);
+  gctest::write_file(copy, pair_file(kCura).text);
   auto bad = run(swap("-i --skip 80 " + quote(copy)));
   CHECK(bad.status == 1);
-  CHECK(read_file(copy) == pair(kCura).text);  // not replaced after an error
+  CHECK(read_file(copy) == pair_file(kCura).text);  // not replaced after an error
   auto good = run(swap("-i --repeat 5 " + quote(copy)));
   CHECK(good.status == 0);
   CHECK(read_file(copy) == swap_on(kCura, "--repeat 5").out);
@@ -179,7 +183,8 @@ TEST_CASE("gc-swap-layer refuses what the input cannot meet", "[gc-swap-layer][e
   auto other = swap_on(kCura, "--layer 5 --with " + with(kPrusaDense));
   CHECK(other.status == 1);
   CHECK(other.err.find("does not lie where the input prints") != std::string::npos);
-  auto no_z = run(swap("--layer 12 --with " + with(kCura) + " " + quote(gctest::fixture_path("pairs/cura_block_0.1_infill20.gcode"))));
+  auto no_z = run(swap("--layer 12 --with " + with(kCura) + " " +
+                       quote(gctest::fixture_path("pairs/cura_block_0.1_infill20.gcode"))));
   CHECK(no_z.status == 1);
   CHECK(no_z.err.find("has no layer at Z 1.3") != std::string::npos);
   auto short_list = swap_on(kCura, "--layer 5-6 --with " + with(kCuraDense) + ":5");

@@ -11,9 +11,17 @@
 #include "gcode/core/line.hpp"
 #include "gcode/core/line_reader.hpp"
 #include "gcode/core/machine_state.hpp"
+#include "gcode/litho/height_map.hpp"
 #include "gcode/litho/image.hpp"
 
 namespace littest {
+
+// A flat plate `width` mm wide, the rest as HeightMapOptions has it.
+inline gcode::litho::HeightMapOptions plate(double width) {
+  gcode::litho::HeightMapOptions o;
+  o.width = width;
+  return o;
+}
 
 // Luma from 0 at the left to 255 at the right (or top to bottom).
 inline gcode::litho::GreyImage gradient(int width, int height, bool vertical = false) {

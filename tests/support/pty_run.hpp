@@ -12,6 +12,10 @@
 
 namespace gctest {
 
+// A virtual printer 200 times real time that heats at once, for the
+// gc-send tests of faults.
+inline const std::string kFastPrinter = "--time-scale 200 --heat-rate 1000 ";
+
 // The first `lines` lines of a fixture cut into 0.2 mm pieces (as
 // gc-subdivide --max 0.2 makes them), made once per test run.
 inline const std::string& pieces_of(const std::string& fixture, int lines) {

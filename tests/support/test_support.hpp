@@ -11,11 +11,16 @@
 #include <vector>
 
 #include "gcode/core/diagnostics.hpp"
+#include "gcode/core/line_builder.hpp"
 #include "gcode/core/machine_state.hpp"
 #include "gcode/pipeline/pipeline.hpp"
 #include "gcode/transform/subdivide.hpp"
 
 namespace gctest {
+
+// Numbers written as the library writes them by default (stages keep a
+// reference to it: it lives as long as the program).
+inline const gcode::Precision kPrecision{};
 
 std::string fixture_path(std::string_view name);
 std::string tool_path(std::string_view tool);

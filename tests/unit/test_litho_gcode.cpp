@@ -22,6 +22,7 @@ using gcode::litho::LithoShape;
 using littest::Bead;
 using littest::kFilamentArea;
 using littest::Measured;
+using littest::plate;
 using littest::measure;
 using littest::Role;
 
@@ -40,12 +41,6 @@ Generated generate(const LithophanePlanner& planner, const LithoGcodeOptions& op
     g.chunks.push_back(chunk.size());
   });
   return g;
-}
-
-HeightMapOptions plate(double width) {
-  HeightMapOptions o;
-  o.width = width;
-  return o;
 }
 
 HeightMapOptions cylinder(double diameter) {

@@ -16,16 +16,12 @@ using gcode::litho::LithophanePlanner;
 using gcode::litho::LithoShape;
 using gcode::litho::PathRole;
 
+using littest::plate;
+
 namespace {
 
 GreyImage flat_grey(int luma) {
   return GreyImage(8, 8, std::vector<std::uint8_t>(64, static_cast<std::uint8_t>(luma)));
-}
-
-HeightMapOptions plate(double width) {
-  HeightMapOptions o;
-  o.width = width;
-  return o;
 }
 
 HeightMapOptions cylinder(double diameter, double height) {

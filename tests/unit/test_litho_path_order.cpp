@@ -42,9 +42,6 @@ HeightMapOptions shape(bool closed) {
   return o;
 }
 
-double distance(Point a, Point b) { return std::hypot(b.x - a.x, b.y - a.y); }
-Point end_of(const Path& p) { return p.pieces.empty() ? p.start : p.pieces.back().to; }
-
 struct Totals {
   double volume[3] = {0, 0, 0};
   double length[3] = {0, 0, 0};

@@ -19,15 +19,15 @@ namespace {
 
 MachineState state_after(const std::string& text) { return gctest::replay_state(text); }
 
-struct Replay {
+struct PauseReplay {
   MachineState end;
   double net = 0;
   double lowest_xy_travel_z = 1e9;  // lowest Z at which the head moved in XY
   std::vector<std::string> lines;
 };
 
-Replay replay(const MachineState& start, const PauseBlock& block) {
-  Replay r;
+PauseReplay replay(const MachineState& start, const PauseBlock& block) {
+  PauseReplay r;
   r.end = start;
   double before = start.filament_total;
   for (const auto* half : {&block.pause, &block.resume}) {
@@ -80,7 +80,7 @@ TEST_CASE("pause: absolute E retracts, parks, returns and restores the E coordin
   CHECK(has(b.resume, "G1 Z0.3 F600"));
   CHECK(has(b.resume, "G92 E5.12345"));
   CHECK(b.resume.back() == "G1 F1500");
-  Replay r = replay(s, b);
+  PauseReplay r = replay(s, b);
   require_restored(r.end, s);
   CHECK(r.net == 0);
   CHECK(r.lowest_xy_travel_z == Approx(2.3));
@@ -152,7 +152,7 @@ TEST_CASE("pause: a file that already retracted is not retracted again", "[pause
   CHECK(has(b.resume, "G1 E5 F2100"));
   CHECK(has(b.resume, "G1 E15 F180"));
   CHECK(has(b.resume, "G1 E13 F2100"));
-  Replay r = replay(s, b);
+  PauseReplay r = replay(s, b);
   require_restored(r.end, s);
   CHECK(r.net == Approx(10).margin(1e-12));
 }
@@ -179,7 +179,7 @@ TEST_CASE("pause: unload, reload, purge and prime push exactly their sum, in chu
         }
       }
     CHECK(e_moves >= 3 + 3 + 4);
-    Replay r = replay(s, b);
+    PauseReplay r = replay(s, b);
     INFO(mode);
     CHECK(r.net == Approx(-420 + 400.5 + 35 + 0.25).margin(1e-9));
     CHECK(b.net_filament == Approx(r.net).margin(1e-12));
@@ -209,7 +209,7 @@ TEST_CASE("pause: the lift is capped at the printer's height and raised to the m
   CHECK(b.park_z == 250);
   // Down to the safe height at the park position, then across, then down.
   CHECK(has(b.resume, "G1 Z201 F600"));
-  Replay r = replay(s, b);
+  PauseReplay r = replay(s, b);
   CHECK(r.lowest_xy_travel_z == 201);
   require_restored(r.end, s);
 }

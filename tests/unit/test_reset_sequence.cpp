@@ -32,7 +32,6 @@ using Lines = std::vector<std::string>;
 
 namespace {
 
-const gcode::Precision kPrecision;
 
 std::string joined(const Lines& lines) {
   std::string out;
@@ -62,7 +61,7 @@ TEST_CASE("reset resume: heat bed then nozzle, declare Z, lift, home X Y only, t
   how.top_z = 12.4;
   how.retracted = 0;
   how.prime = 0.8;
-  Lines out = reset_resume_lines(how, kPrecision, {.lift = 1, .e_feed = 2100});
+  Lines out = reset_resume_lines(how, gctest::kPrecision, {.lift = 1, .e_feed = 2100});
   INFO(joined(out));
   const std::size_t bed = index_of(out, "M190 S60"), hot = index_of(out, "M109 S215"),
                     declare = index_of(out, "G92 Z12.4"), home = index_of(out, "G28 X Y");
@@ -112,7 +111,7 @@ TEST_CASE("reset resume: the travel clears a taller part than the nozzle's own h
   how.nozzle_z = 0.8;  // the nozzle stopped a layer higher
   how.retracted = 0.8;
   how.prime = 0.8;
-  Lines out = reset_resume_lines(how, kPrecision);
+  Lines out = reset_resume_lines(how, gctest::kPrecision);
   INFO(joined(out));
   CHECK(index_of(out, "G92 Z0.8") < out.size());
   CHECK(index_of(out, "M190") == out.size());  // no bed target: no bed line
@@ -134,10 +133,10 @@ TEST_CASE("reset resume: refused where it cannot know the way, a delta gets the 
           "[reset_sequence]") {
   ResetResume unknown;
   unknown.target = gctest::replay_state("M104 S200\nG1 X10\n");  // never homed
-  CHECK_THROWS_AS(reset_resume_lines(unknown, kPrecision), std::invalid_argument);
+  CHECK_THROWS_AS(reset_resume_lines(unknown, gctest::kPrecision), std::invalid_argument);
   ResetResume inches;
   inches.target = gctest::replay_state("G28\nG20\nG1 X1 Y1 Z1\n");
-  CHECK_THROWS_AS(reset_resume_lines(inches, kPrecision), std::invalid_argument);
+  CHECK_THROWS_AS(reset_resume_lines(inches, gctest::kPrecision), std::invalid_argument);
   std::string refusal = gcode::serial::xy_homing_refusal(12.25, "part.gcode");
   CHECK(refusal.find("cannot home X and Y without Z") != std::string::npos);
   CHECK(refusal.find("gc-relayer --resume-from-z <measured Z> part.gcode > resume.gcode") != std::string::npos);

@@ -13,7 +13,7 @@ namespace {
 // 25000 bytes per second (250000 baud): 40 us per byte; the margin is
 // 0.1 s plus 64 byte times.
 constexpr double kByte = 1.0 / 25000;
-constexpr double kMargin = 0.1 + 64 * kByte;
+constexpr double kClockMargin = 0.1 + 64 * kByte;
 
 AnswerClock::Wait move(int moves = 1, double motion = 0) {
   AnswerClock::Wait w;
@@ -47,11 +47,11 @@ TEST_CASE("answer clock: bytes reach the printer one byte time apart after what 
 
 TEST_CASE("answer clock: a line is due after it arrived and the answer before it came", "[serial]") {
   AnswerClock c(25000, 1);
-  CHECK(c.due(1.0, move()) == Approx(1.0 + kMargin));
+  CHECK(c.due(1.0, move()) == Approx(1.0 + kClockMargin));
   c.answered(0, 2.0);  // a command without motion answered at 2 s
   CHECK(c.ready(1.0, move()) == Approx(2.0));
-  CHECK(c.due(1.0, move()) == Approx(2.0 + kMargin));
-  CHECK(c.due(3.0, other()) == Approx(3.0 + kMargin));
+  CHECK(c.due(1.0, move()) == Approx(2.0 + kClockMargin));
+  CHECK(c.due(3.0, other()) == Approx(3.0 + kClockMargin));
 }
 
 TEST_CASE("answer clock: a move is answered when the planner has room and others when it is empty", "[serial]") {
@@ -137,20 +137,20 @@ TEST_CASE("answer clock: long commands are due 1.5 keepalive intervals after the
   heat.empty = true;
   heat.unbounded = true;
   // Nothing heard yet: Marlin's 2 s keepalive is assumed.
-  CHECK(c.due(5.0, heat) == Approx(5.0 + 3.0 + kMargin));
+  CHECK(c.due(5.0, heat) == Approx(5.0 + 3.0 + kClockMargin));
   c.keepalive(10.0);
   c.keepalive(11.0);  // temperature reports every second while heating
-  CHECK(c.due(5.0, heat) == Approx(11.0 + 1.5 + kMargin));
+  CHECK(c.due(5.0, heat) == Approx(11.0 + 1.5 + kClockMargin));
   c.keepalive(12.0);
-  CHECK(c.due(5.0, heat) == Approx(12.0 + 1.5 + kMargin));
+  CHECK(c.due(5.0, heat) == Approx(12.0 + 1.5 + kClockMargin));
   // A keepalive after the last answer also holds back a bounded command.
-  CHECK(c.due(5.0, move()) == Approx(12.0 + 1.5 + kMargin));
+  CHECK(c.due(5.0, move()) == Approx(12.0 + 1.5 + kClockMargin));
   c.answered(0, 13.0);
-  CHECK(c.due(13.0, move()) == Approx(13.0 + kMargin));
+  CHECK(c.due(13.0, move()) == Approx(13.0 + kClockMargin));
   // A gap of minutes between two long commands is not an interval.
   c.keepalive(300.0);
   c.keepalive(301.0);
-  CHECK(c.due(0, heat) == Approx(301.0 + 1.5 + kMargin));
+  CHECK(c.due(0, heat) == Approx(301.0 + 1.5 + kClockMargin));
 }
 
 TEST_CASE("answer clock: the quiet time after a resend covers the stale bytes twice", "[serial]") {

@@ -22,15 +22,15 @@ namespace {
 
 constexpr double kNever = std::numeric_limits<double>::infinity();
 
-struct Pipe {
+struct LoopPipe {
   int r = -1, w = -1;
-  Pipe() {
+  LoopPipe() {
     int fds[2];
     REQUIRE(::pipe(fds) == 0);
     r = fds[0];
     w = fds[1];
   }
-  ~Pipe() {
+  ~LoopPipe() {
     ::close(r);
     if (w >= 0) ::close(w);
   }
@@ -52,7 +52,7 @@ TEST_CASE("event loop: nothing to wait for ends at once", "[serial][event_loop]"
 
 TEST_CASE("event loop: a readable descriptor calls its handler with the events", "[serial][event_loop]") {
   EventLoop loop;
-  Pipe p;
+  LoopPipe p;
   REQUIRE(::write(p.w, "ok\nok\n", 6) == 6);
   std::string got;
   int id = 0;
@@ -69,7 +69,7 @@ TEST_CASE("event loop: a readable descriptor calls its handler with the events",
 
 TEST_CASE("event loop: a muted watch is not polled, a hang-up is reported", "[serial][event_loop]") {
   EventLoop loop;
-  Pipe muted, live;
+  LoopPipe muted, live;
   REQUIRE(::write(muted.w, "x", 1) == 1);
   int calls = 0;
   int muted_id = loop.add_fd(muted.r, POLLIN, [&](short) { FAIL("a muted watch ran"); });
@@ -106,7 +106,7 @@ TEST_CASE("event loop: timers fire once their deadline has passed", "[serial][ev
 
 TEST_CASE("event loop: a timer due now and a ready descriptor both run, stop() ends the loop", "[serial][event_loop]") {
   EventLoop loop;
-  Pipe p;
+  LoopPipe p;
   REQUIRE(::write(p.w, "x", 1) == 1);
   int io = 0, timer = 0;
   loop.add_fd(p.r, POLLIN, [&](short) {
@@ -125,7 +125,7 @@ TEST_CASE("event loop: a timer due now and a ready descriptor both run, stop() e
 }
 
 TEST_CASE("event loop: set_nonblocking", "[serial][event_loop]") {
-  Pipe p;
+  LoopPipe p;
   gcode::serial::set_nonblocking(p.r);
   CHECK((::fcntl(p.r, F_GETFL) & O_NONBLOCK) != 0);
   char b;
@@ -140,8 +140,8 @@ TEST_CASE("event loop: a handler may add watches while it runs", "[serial][event
   // watch list under the running call would leave it reading freed memory.
   struct Ctx {
     EventLoop loop;
-    Pipe first;
-    std::vector<std::unique_ptr<Pipe>> more;
+    LoopPipe first;
+    std::vector<std::unique_ptr<LoopPipe>> more;
     int served = 0;
     int first_id = 0;
   } ctx;
@@ -151,8 +151,8 @@ TEST_CASE("event loop: a handler may add watches while it runs", "[serial][event
     char b;
     CHECK(::read(c->first.r, &b, 1) == 1);
     for (int i = 0; i < 64; ++i) {
-      c->more.push_back(std::make_unique<Pipe>());
-      Pipe* p = c->more.back().get();
+      c->more.push_back(std::make_unique<LoopPipe>());
+      LoopPipe* p = c->more.back().get();
       REQUIRE(::write(p->w, "y", 1) == 1);
       c->loop.add_fd(p->r, POLLIN, [c, p](short) {
         char y;

@@ -20,7 +20,8 @@ using Lines = std::vector<std::string>;
 
 constexpr double kMargin = 0.1;
 
-std::string numbered(long long n, std::string_view command) {
+// As the sender writes it, without its newline.
+std::string numbered_line(long long n, std::string_view command) {
   std::string s;
   append_numbered_line(s, n, command);
   s.pop_back();
@@ -44,8 +45,8 @@ SenderConfig replay_config(FlowMode flow = FlowMode::Window) {
   return c;
 }
 
-struct Replay {
-  explicit Replay(const SenderConfig& c = replay_config())
+struct SenderReplay {
+  explicit SenderReplay(const SenderConfig& c = replay_config())
       : sender(c, [this](LogLevel level, std::uint64_t line, std::string_view m) {
           if (level != LogLevel::Trace)
             messages.push_back((line > 0 ? "line " + std::to_string(line) + ": " : "") + std::string(m));
@@ -95,7 +96,7 @@ struct Replay {
   }
   // How often line `n` of input_messages() went out.
   std::size_t times_sent(long long n) const {
-    return times_sent(numbered(n, commands[static_cast<std::size_t>(n - 1)]));
+    return times_sent(numbered_line(n, commands[static_cast<std::size_t>(n - 1)]));
   }
 
   Sender sender;
@@ -108,7 +109,7 @@ struct Replay {
 
 Lines numbered_range(long long from, long long to, const Lines& commands) {
   Lines out;
-  for (long long n = from; n <= to; ++n) out.push_back(numbered(n, commands[static_cast<std::size_t>(n - 1)]));
+  for (long long n = from; n <= to; ++n) out.push_back(numbered_line(n, commands[static_cast<std::size_t>(n - 1)]));
   return out;
 }
 
@@ -116,19 +117,19 @@ Lines numbered_range(long long from, long long to, const Lines& commands) {
 
 TEST_CASE("replay: a lost ok in window mode is asked for 0.1 s after it was due and M105's answer frees the rest",
           "[serial]") {
-  Replay r;
+  SenderReplay r;
   Lines c = r.input_messages(6);
   CHECK(r.sent() == numbered_range(1, 4, c));  // BUFSIZE 4 in flight
   CHECK(r.sender.deadline() == Approx(kMargin));
   r.reply({"ok"}, 0.01);  // N1
-  CHECK(r.sent() == Lines{numbered(5, c[4])});
+  CHECK(r.sent() == Lines{numbered_line(5, c[4])});
   CHECK(r.sender.deadline() == Approx(0.01 + kMargin));
   // N2's ok is lost: N3's is taken for it, and so on; the sender believes
   // one line more is in flight than there is.
   r.reply({"ok"}, 0.02);
-  CHECK(r.sent() == Lines{numbered(6, c[5])});
+  CHECK(r.sent() == Lines{numbered_line(6, c[5])});
   r.reply({"ok"}, 0.03);
-  CHECK(r.sent() == Lines{numbered(7, "M400")});
+  CHECK(r.sent() == Lines{numbered_line(7, "M400")});
   r.reply({"ok"}, 0.04);
   r.reply({"ok"}, 0.05);
   r.reply({"ok"}, 0.06);  // M400's own ok, taken for N6's
@@ -152,11 +153,11 @@ TEST_CASE("replay: a lost ok in window mode is asked for 0.1 s after it was due 
 }
 
 TEST_CASE("replay: an error burst with lines in flight is one rewind and each line goes out again once", "[serial]") {
-  Replay r;
+  SenderReplay r;
   Lines c = r.input_messages(8);
   CHECK(r.sent() == numbered_range(1, 4, c));
   r.reply({"ok"}, 0.01);
-  CHECK(r.sent() == Lines{numbered(5, c[4])});
+  CHECK(r.sent() == Lines{numbered_line(5, c[4])});
   // N2 arrived corrupted; Marlin empties its buffer and asks for 2.
   r.reply({"Error:checksum mismatch, Last Line: 1", "Resend: 2", "ok"}, 0.02);
   CHECK(r.sent().empty());
@@ -178,7 +179,7 @@ TEST_CASE("replay: an error burst with lines in flight is one rewind and each li
   CHECK(r.sender.stats().resent_lines == 4);
   // Each ok now frees one line: none of the three oks of the burst freed one.
   r.reply({"ok"}, 0.06);
-  CHECK(r.sent() == Lines{numbered(6, c[5])});
+  CHECK(r.sent() == Lines{numbered_line(6, c[5])});
   r.reply({"ok"}, 0.07);
   r.reply({"ok"}, 0.08);
   r.reply({"ok"}, 0.09);
@@ -191,7 +192,7 @@ TEST_CASE("replay: an error burst with lines in flight is one rewind and each li
 }
 
 TEST_CASE("replay: a Resend for the line being resent is a repeat until that line has gone out again", "[serial]") {
-  Replay r;
+  SenderReplay r;
   Lines c = r.input_messages(3);
   CHECK(r.sent() == numbered_range(1, 4, c));
   r.reply({"ok", "Error:checksum mismatch, Last Line: 1", "Resend: 2", "ok"}, 0.01);
@@ -214,7 +215,7 @@ TEST_CASE("replay: a Resend for the line being resent is a repeat until that lin
 }
 
 TEST_CASE("replay: Resend for a line never sent and too many requests for one line", "[serial]") {
-  Replay r;
+  SenderReplay r;
   Lines c = r.input_messages(3);
   CHECK(r.sent() == numbered_range(1, 4, c));
   // Nothing to rewind to; the ok after it belongs to the request.
@@ -228,14 +229,14 @@ TEST_CASE("replay: Resend for a line never sent and too many requests for one li
 
   SenderConfig config = replay_config();
   config.max_resends = 2;
-  Replay s(config);
+  SenderReplay s(config);
   s.input({"M117 a"});
-  CHECK(s.sent() == Lines{numbered(1, "M117 a"), numbered(2, "M400")});
+  CHECK(s.sent() == Lines{numbered_line(1, "M117 a"), numbered_line(2, "M400")});
   double t = 0;
   for (int round = 0; round < 2; ++round) {
     s.reply({"Error:checksum mismatch, Last Line: 0", "Resend: 1", "ok"}, t += 0.01);
     s.at(t += 0.03);
-    CHECK(s.sent() == Lines{numbered(1, "M117 a"), numbered(2, "M400")});
+    CHECK(s.sent() == Lines{numbered_line(1, "M117 a"), numbered_line(2, "M400")});
   }
   s.reply({"Error:checksum mismatch, Last Line: 0", "Resend: 1", "ok"}, t += 0.01);
   CHECK(s.sender.state() == SenderState::Failed);
@@ -243,14 +244,14 @@ TEST_CASE("replay: Resend for a line never sent and too many requests for one li
 }
 
 TEST_CASE("replay: ADVANCED_OK numbers free every line up to them and a lost ok costs nothing", "[serial]") {
-  Replay r(replay_config(FlowMode::AdvancedOk));
+  SenderReplay r(replay_config(FlowMode::AdvancedOk));
   Lines c = r.input_messages(5);
   CHECK(r.sent() == numbered_range(1, 4, c));
   r.reply({"ok N1 P16 B3"}, 0.01);
-  CHECK(r.sent() == Lines{numbered(5, c[4])});
+  CHECK(r.sent() == Lines{numbered_line(5, c[4])});
   // N2's ok is lost; N3's frees both.
   r.reply({"ok N3 P16 B3"}, 0.02);
-  CHECK(r.sent() == Lines{numbered(6, "M400")});
+  CHECK(r.sent() == Lines{numbered_line(6, "M400")});
   CHECK(r.sender.in_flight() == 3);
   // An ok without N answers no numbered line (a rejected line's, or a
   // command that was never ours).
@@ -265,9 +266,9 @@ TEST_CASE("replay: ADVANCED_OK numbers free every line up to them and a lost ok 
 
 TEST_CASE("replay: busy messages keep a G28 waiting: the answer is due 1.5 keepalive intervals after the last",
           "[serial]") {
-  Replay r;
+  SenderReplay r;
   r.input({"G28", "M117 homed"});
-  CHECK(r.sent() == Lines{numbered(1, "G28"), numbered(2, "M117 homed"), numbered(3, "M400")});
+  CHECK(r.sent() == Lines{numbered_line(1, "G28"), numbered_line(2, "M117 homed"), numbered_line(3, "M400")});
   // Nothing heard yet: Marlin's 2 s keepalive interval is assumed.
   CHECK(r.sender.deadline() == Approx(3.0 + kMargin));
   r.reply({"echo:busy: processing"}, 2.0);
@@ -284,9 +285,9 @@ TEST_CASE("replay: busy messages keep a G28 waiting: the answer is due 1.5 keepa
 }
 
 TEST_CASE("replay: temperature reports while M109 heats are keepalives and a silent heater is asked once", "[serial]") {
-  Replay r;
+  SenderReplay r;
   r.input({"M109 S200", "G1 X10 F600"});
-  CHECK(r.sent() == Lines{numbered(1, "M109 S200"), numbered(2, "G1 X10 F600"), numbered(3, "M400")});
+  CHECK(r.sent() == Lines{numbered_line(1, "M109 S200"), numbered_line(2, "G1 X10 F600"), numbered_line(3, "M400")});
   for (int i = 1; i <= 5; ++i) {
     r.reply({"T:" + std::to_string(20 + 30 * i) + ".00 /200.00 B:20.00 /0.00 @:127 B@:0 W:?"}, i);
     CHECK(r.sent().empty());
@@ -303,9 +304,9 @@ TEST_CASE("replay: temperature reports while M109 heats are keepalives and a sil
 }
 
 TEST_CASE("replay: a printer that says wait while lines are in flight is asked at once", "[serial]") {
-  Replay r;
+  SenderReplay r;
   r.input({"M117 a"});
-  CHECK(r.sent() == Lines{numbered(1, "M117 a"), numbered(2, "M400")});
+  CHECK(r.sent() == Lines{numbered_line(1, "M117 a"), numbered_line(2, "M400")});
   r.reply({"ok"}, 0.01);
   CHECK(r.sender.deadline() == Approx(0.01 + kMargin));
   // N2's ok was lost and the printer is idle.
@@ -318,9 +319,9 @@ TEST_CASE("replay: a printer that says wait while lines are in flight is asked a
 }
 
 TEST_CASE("replay: an M105 whose answer was lost is asked again and a plain ok in its place takes it", "[serial]") {
-  Replay r;
+  SenderReplay r;
   r.input(messages_1_to(1));
-  CHECK(r.sent() == Lines{numbered(1, "M117 1"), numbered(2, "M400")});
+  CHECK(r.sent() == Lines{numbered_line(1, "M117 1"), numbered_line(2, "M400")});
   r.at(0.1);
   CHECK(r.sent() == Lines{"M105"});
   // The oks of N1 and N2 were only late; the M105's answer is lost. Every
@@ -332,7 +333,7 @@ TEST_CASE("replay: an M105 whose answer was lost is asked again and a plain ok i
   // Here N2's ok is lost, and the answer to the first M105 too: asked again
   // 0.2 s after it was due (twice the wait of the first question). The
   // answer that comes is taken for the oldest M105's.
-  Replay s;
+  SenderReplay s;
   s.input(messages_1_to(1));
   s.sent();
   s.reply({"ok"}, 0.05);
@@ -350,17 +351,17 @@ TEST_CASE("replay: an M105 whose answer was lost is asked again and a plain ok i
   // command (which Marlin answers with a plain ok) or its answer was lost.
   // Taking the ok for it frees the least; what it leaves believed in flight
   // is asked for again.
-  Replay u;
+  SenderReplay u;
   Lines c = u.input_messages(5);
   CHECK(u.sent() == numbered_range(1, 4, c));
   u.reply({"ok"}, 0.01);  // N1
-  CHECK(u.sent() == Lines{numbered(5, c[4])});
+  CHECK(u.sent() == Lines{numbered_line(5, c[4])});
   // N2's ok is lost.
   u.at(u.sender.deadline());
   CHECK(u.now == Approx(0.01 + kMargin));
   CHECK(u.sent() == Lines{"M105"});
   u.reply({"ok"}, 0.12);  // N3's, taken for N2's
-  CHECK(u.sent() == Lines{numbered(6, "M400")});
+  CHECK(u.sent() == Lines{numbered_line(6, "M400")});
   u.reply({"ok"}, 0.125);  // N4's
   u.reply({"ok", "ok"}, 0.13);  // N5's and the garbled M105's
   CHECK(u.sender.in_flight() == 2);   // the M105 and the M400
@@ -380,7 +381,7 @@ TEST_CASE("replay: a silent printer is asked again and again and given up after 
   SenderConfig config = replay_config();
   config.timeout = 1;
   config.max_timeouts = 2;
-  Replay r(config);
+  SenderReplay r(config);
   r.input({"M117 a"});
   r.sent();
   double t = 0;
@@ -403,13 +404,13 @@ TEST_CASE("replay: a silent printer is asked again and again and given up after 
 }
 
 TEST_CASE("replay: an over-long M117 goes out shortened with a warning naming its input line", "[serial]") {
-  Replay r;
+  SenderReplay r;
   std::string long_message = "M117 " + std::string(150, 'x');
   r.input({"G92 E0", long_message});
   Lines sent = r.sent();
   REQUIRE(sent.size() == 3);
   // "N2 " + 88 bytes of command + "*" + the checksum's three digits at most.
-  CHECK(sent[1] == numbered(2, "M117 " + std::string(83, 'x')));
+  CHECK(sent[1] == numbered_line(2, "M117 " + std::string(83, 'x')));
   CHECK(sent[1].size() == 95);
   REQUIRE(r.messages.size() == 1);
   CHECK(r.messages[0].rfind("line 2: M117 message shortened to 88 bytes", 0) == 0);
@@ -417,21 +418,21 @@ TEST_CASE("replay: an over-long M117 goes out shortened with a warning naming it
 }
 
 TEST_CASE("replay: a line the firmware cannot take stops the print before it once the lines before it are done", "[serial]") {
-  Replay r;
+  SenderReplay r;
   std::string g1 = "G1 X1 Y2 E3" + std::string(120, '0');
   r.input({"M117 a", "M117 b", g1, "M117 never"}, false);
   // Nothing more is read once the line is refused.
   CHECK_FALSE(r.sender.wants_input());
-  CHECK(r.sent() == Lines{numbered(1, "M117 a"), numbered(2, "M117 b"), numbered(3, "M400")});
+  CHECK(r.sent() == Lines{numbered_line(1, "M117 a"), numbered_line(2, "M117 b"), numbered_line(3, "M400")});
   for (double t : {0.01, 0.02, 0.03}) r.reply({"ok"}, t);
   CHECK(r.sender.state() == SenderState::Failed);
   CHECK(r.sender.failure() ==
         "line 3: the line is 138 bytes with its line number and checksum; the printer keeps 95 (--max-line 96) and "
         "would refuse it every time it is sent; not sent: printing stopped before it (--skip-bad-lines leaves such "
         "lines out)");
-  CHECK(r.times_sent(numbered(3, g1)) == 0);
+  CHECK(r.times_sent(numbered_line(3, g1)) == 0);
   // Refused at the first line: nothing to print, it fails at once.
-  Replay s;
+  SenderReplay s;
   s.input({"\x89PNG", "G28"}, false);
   CHECK(s.sender.state() == SenderState::Failed);
   CHECK(s.sender.failure().rfind("line 1: byte 0x89 at column 1 is not G-code text", 0) == 0);
@@ -441,9 +442,9 @@ TEST_CASE("replay: a line the firmware cannot take stops the print before it onc
 TEST_CASE("replay: skip-bad-lines leaves out binary junk and over-long lines and goes on", "[serial]") {
   SenderConfig config = replay_config();
   config.skip_bad_lines = true;
-  Replay r(config);
+  SenderReplay r(config);
   r.input({"M117 a", std::string("G1 X\x01\x02\xff", 7), "G1 X1" + std::string(100, '0'), "M117 b"});
-  CHECK(r.sent() == Lines{numbered(1, "M117 a"), numbered(2, "M117 b"), numbered(3, "M400")});
+  CHECK(r.sent() == Lines{numbered_line(1, "M117 a"), numbered_line(2, "M117 b"), numbered_line(3, "M400")});
   CHECK(r.messages == Lines{"line 2: byte 0x01 at column 5 is not G-code text (a control byte or binary data); left "
                             "out (--skip-bad-lines)",
                             "line 3: the line is 111 bytes with its line number and checksum; the printer keeps 95 "
@@ -454,14 +455,14 @@ TEST_CASE("replay: skip-bad-lines leaves out binary junk and over-long lines and
 }
 
 TEST_CASE("replay: an input without a command prints nothing and fails", "[serial]") {
-  Replay r;
+  SenderReplay r;
   r.input({});
   CHECK(r.sender.state() == SenderState::Failed);
   CHECK(r.sender.failure() == "nothing was printed: the input has no G-code command");
   CHECK(r.sent().empty());
   SenderConfig config = replay_config();
   config.skip_bad_lines = true;
-  Replay s(config);
+  SenderReplay s(config);
   s.input({"\x7f\x45\x4c\x46"});
   CHECK(s.sender.state() == SenderState::Failed);
   CHECK(s.sender.failure() == "nothing was printed: all 1 commands of the input were left out");
@@ -470,7 +471,7 @@ TEST_CASE("replay: an input without a command prints nothing and fails", "[seria
 TEST_CASE("replay: the handshake comes first and MAX_CMD_SIZE from M115 sets the line limit", "[serial]") {
   SenderConfig config = replay_config();
   config.handshake = true;
-  Replay r(config);
+  SenderReplay r(config);
   CHECK_FALSE(r.sender.wants_input());
   CHECK(r.sent() == Lines{"M110 N0"});
   r.reply({"ok"}, 0.01);
@@ -484,10 +485,10 @@ TEST_CASE("replay: the handshake comes first and MAX_CMD_SIZE from M115 sets the
   r.input({"M117 " + std::string(50, 'y')});
   Lines sent = r.sent();
   REQUIRE(sent.size() == 2);
-  CHECK(sent[0] == numbered(1, "M117 " + std::string(27, 'y')));  // 39 bytes
+  CHECK(sent[0] == numbered_line(1, "M117 " + std::string(27, 'y')));  // 39 bytes
   // An explicit --max-line wins over the firmware's report.
   config.max_line_from_firmware = false;
-  Replay s(config);
+  SenderReplay s(config);
   s.sent();
   s.reply({"ok"}, 0.01);
   s.reply({"Cap:MAX_CMD_SIZE:40", "ok"}, 0.02);

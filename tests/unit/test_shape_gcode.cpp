@@ -15,14 +15,14 @@ using gcode::procedural::ShapePath;
 
 namespace {
 
-struct Written {
+struct ShapeWritten {
   std::string text;
   gcode::procedural::ShapeGcodeStats stats;
   int chunks = 0;
 };
 
-Written write(const ShapePath& path, const ShapeGcodeOptions& g = {}) {
-  Written w;
+ShapeWritten write(const ShapePath& path, const ShapeGcodeOptions& g = {}) {
+  ShapeWritten w;
   w.stats = gcode::procedural::write_shape_gcode(path, g, [&](std::string_view c) {
     w.text.append(c);
     ++w.chunks;
@@ -41,7 +41,7 @@ TEST_CASE("every primitive: on its curve, E = the bead on every piece, nothing b
     o.diameter = 30;
     o.height = 3;
     const ShapePath path(o);
-    const Written w = write(path);
+    const ShapeWritten w = write(path);
     INFO(gcode::procedural::shape_kind_name(kind));
     const shapetest::ShapeCheck c = shapetest::check_shape(w.text, o, path.pitch(), path.turns());
     CHECK(c.pieces == w.stats.moves);
@@ -59,7 +59,7 @@ TEST_CASE("the header: Cura's box and markers, the parameters, the filament it t
   o.kind = ShapeKind::Cone;
   o.height = 2;
   const ShapePath path(o);
-  const Written w = write(path);
+  const ShapeWritten w = write(path);
   for (const char* s : {";FLAVOR:Marlin\n", ";MINX:80\n", ";MAXY:140\n", ";MAXZ:2\n", ";LAYER_COUNT:7\n", ";LAYER:6\n",
                         ";  shape = cone\n", ";  top_diameter = 30 mm\n", ";TYPE:WALL-OUTER\n", "M106 S255\n"})
     CHECK(w.text.find(s) != std::string::npos);
@@ -77,14 +77,14 @@ TEST_CASE("given start and end code replace the built-in ones, absolute position
   g.start_code = "G28 ; mine";
   g.end_code = "M84 ; mine too";
   g.start_name = "start.gcode";
-  const Written w = write(ShapePath(o), g);
+  const ShapeWritten w = write(ShapePath(o), g);
   CHECK(w.text.find("G28 ; mine\nG90\nM83") != std::string::npos);
   CHECK(w.text.find("M190") == std::string::npos);
   CHECK(w.text.find(";  start = start.gcode\n") != std::string::npos);
   CHECK(w.text.substr(w.text.size() - 15) == "M84 ; mine too\n");
   g.retract_length = 0;
   g.start_code.clear();
-  const Written plain = write(ShapePath(o), g);
+  const ShapeWritten plain = write(ShapePath(o), g);
   CHECK(plain.text.find("G1 F2100 E") == std::string::npos);
   const gcode::MachineState end = gctest::replay_state(plain.text);
   CHECK(end.relative_e);

@@ -25,14 +25,14 @@ SpeedOptions factor_of(double k) {
   return o;
 }
 
-struct Result {
+struct SpeedResult {
   std::string out;
   gcode::SpeedStats stats;
   std::uint64_t warnings = 0;
 };
 
 // Runs the stage over `text`; `layers` (if not empty) is the --layers region.
-Result speed(std::string_view text, const SpeedOptions& o, const std::string& layers = {}) {
+SpeedResult speed(std::string_view text, const SpeedOptions& o, const std::string& layers = {}) {
   gcode::Diagnostics diag("test", -1);
   gcode::LayerMarkers markers;
   gcode::Pipeline pipeline(markers);
@@ -70,7 +70,7 @@ class Rush : public gcode::Stage {
   bool on_ = false;
 };
 
-const char* kTwoLayers =
+const char* kTwoLayersSpeed =
     "M83\n"
     "G1 X0 Y0 F1200 ; start\n"
     ";LAYER:0\n"
@@ -91,7 +91,7 @@ const char* kTwoLayers =
 
 TEST_CASE("speed scales the inherited F on the first move of the region and restores it on the first move after",
           "[speed]") {
-  Result r = speed(kTwoLayers, factor_of(1.5), "2");
+  SpeedResult r = speed(kTwoLayersSpeed, factor_of(1.5), "2");
   CHECK(r.out ==
         "M83\n"
         "G1 X0 Y0 F1200 ; start\n"
@@ -113,7 +113,7 @@ TEST_CASE("speed scales the inherited F on the first move of the region and rest
   CHECK(r.stats.restores == 1);
   CHECK(r.stats.layers == std::vector<int>{2});
   // A factor of 1 changes nothing.
-  CHECK(speed(kTwoLayers, factor_of(1), "2").out == kTwoLayers);
+  CHECK(speed(kTwoLayersSpeed, factor_of(1), "2").out == kTwoLayersSpeed);
 }
 
 TEST_CASE("speed switched on mid-layer and off at the layer end changes exactly the rest of that layer",
@@ -207,10 +207,10 @@ TEST_CASE("speed rounds the exact decimal product at the input's F decimals", "[
   ramp.ramp_first = 1;
   ramp.ramp_last = 2;
   ramp.ramp_layers = {1, 2, 3, 4};
-  Result r = speed(";LAYER:0\nM83\nG1 X0 Z0.2 F3000\nG1 X1 E1\n;LAYER:1\nG1 Z0.4\nG1 X2 E1\n", ramp);
+  SpeedResult r = speed(";LAYER:0\nM83\nG1 X0 Z0.2 F3000\nG1 X1 E1\n;LAYER:1\nG1 Z0.4\nG1 X2 E1\n", ramp);
   CHECK(r.out == ";LAYER:0\nM83\nG1 X0 Z0.2 F3000\nG1 X1 E1\n;LAYER:1\nG1 Z0.4\nG1 X2 E1 F4000 ; gc-speedup x1.3333\n");
   // Inches: F in inches per minute, with two more decimals.
-  Result inch = speed("G20\nM83\nG1 X0 F10.5\nG1 X1 E0.1\n", factor_of(3));
+  SpeedResult inch = speed("G20\nM83\nG1 X0 F10.5\nG1 X1 E0.1\n", factor_of(3));
   CHECK(inch.out == "G20\nM83\nG1 X0 F10.5\nG1 X1 E0.1 F31.5 ; gc-speedup x3\n");
   CHECK(gctest::replay_state(inch.out).feedrate == Approx(31.5 * 25.4));
 }
@@ -228,7 +228,7 @@ TEST_CASE("speed changes extrusion and arcs but never retractions or wipes or Z 
       "G1 Z0.2\n"             // back down
       "G1 E1.5\n"             // unretraction
       "G1 X50 E1\n";
-  Result plain = speed(text, factor_of(2));
+  SpeedResult plain = speed(text, factor_of(2));
   CHECK(plain.out ==
         "M83\nG1 X0 Y0 F1200\n"
         "G1 X10 E1 F2400 ; gc-speedup x2\n"
@@ -256,13 +256,13 @@ TEST_CASE("speed caps round toward the cap and never turn the change around", "[
   flow.max_flow = 8;
   double cap = 8 * 60 / (0.1 * 3.141592653589793 / 4 * 1.75 * 1.75);
   REQUIRE(std::floor(cap) == 1995);
-  Result r = speed("M83\nG1 X0 F1200\nG1 X10 E1\nG1 X20 E0.5\n", flow);
+  SpeedResult r = speed("M83\nG1 X0 F1200\nG1 X10 E1\nG1 X20 E0.5\n", flow);
   CHECK(r.out == "M83\nG1 X0 F1200\nG1 X10 E1 F1995 ; gc-speedup x3 capped\nG1 X20 E0.5 F3600 ; gc-speedup x3\n");
   CHECK(r.stats.capped_flow == 1);
   // Already faster than --max-speed: a speed-up keeps the move's speed.
   SpeedOptions max = factor_of(3);
   max.max_speed = 20;
-  Result kept = speed("M83\nG1 X0 F3000\nG1 X10 E1\n", max);
+  SpeedResult kept = speed("M83\nG1 X0 F3000\nG1 X10 E1\n", max);
   CHECK(kept.out == "M83\nG1 X0 F3000\nG1 X10 E1\n");
   CHECK(kept.stats.capped_max_speed == 1);
   CHECK(kept.stats.moves_changed == 0);
@@ -280,7 +280,7 @@ TEST_CASE("speed caps round toward the cap and never turn the change around", "[
 TEST_CASE("speed with M220 inserts the factor before the region's first move and the restore after it", "[speed][m220]") {
   SpeedOptions o = factor_of(1.5);
   o.m220 = true;
-  Result r = speed(kTwoLayers, o, "2");
+  SpeedResult r = speed(kTwoLayersSpeed, o, "2");
   CHECK(r.out ==
         "M83\nG1 X0 Y0 F1200 ; start\n;LAYER:0\nG1 Z0.2\nG1 X10 E1\nG1 X20 E1\n;LAYER:1\n"
         "M220 S150 ; gc-speedup x1.5\n"
@@ -289,7 +289,7 @@ TEST_CASE("speed with M220 inserts the factor before the region's first move and
         "G1 Z0.6\nG1 X10 E1\nM400\n");
   // A region to the end: the restore is the last line.
   o.m220_restore = gcode::M220Restore::Backup;
-  Result end = speed(kTwoLayers, o, "3-");
+  SpeedResult end = speed(kTwoLayersSpeed, o, "3-");
   const std::string tail = "M400\nM220 R ; gc-speedup restore\n";
   CHECK(end.out.substr(end.out.size() - tail.size()) == tail);
   CHECK(end.out.find(";LAYER:2\nM220 B ; gc-speedup x1.5\nM220 S150 ; gc-speedup x1.5\nG1 Z0.6\n") != std::string::npos);
@@ -312,7 +312,7 @@ TEST_CASE("speed refuses lines an earlier run marked unless forced and ignores i
 }
 
 TEST_CASE("speed leaves numbered and checksummed lines and a bare F alone with one warning", "[speed]") {
-  Result r = speed("M83\nG1 X0 F600\nN10 G1 X1 E1*99\nG1 X2 E1 F\nG1 X3 E1\n", factor_of(2));
+  SpeedResult r = speed("M83\nG1 X0 F600\nN10 G1 X1 E1*99\nG1 X2 E1 F\nG1 X3 E1\n", factor_of(2));
   CHECK(r.out == "M83\nG1 X0 F600\nN10 G1 X1 E1*99\nG1 X2 E1 F\nG1 X3 E1 F1200 ; gc-speedup x2\n");
   CHECK(r.stats.left_alone == 2);
   CHECK(r.warnings == 1);

@@ -40,7 +40,7 @@ std::string rewritten(const std::string& text, gcode::Fixed shift, double scale,
   return gctest::run_stages(pipeline, text);
 }
 
-gcode::Fixed dec(std::int64_t mantissa, int decimals) { return gcode::Fixed::from_decimal(mantissa, decimals); }
+gcode::Fixed fixed_of(std::int64_t mantissa, int decimals) { return gcode::Fixed::from_decimal(mantissa, decimals); }
 
 
 // A plan from a table: per main layer, keep or not and the blocks first.
@@ -72,10 +72,10 @@ struct Collect : gcode::SpliceSink {
 TEST_CASE("splice rewrite: absolute Z is shifted exactly, relative Z is not", "[splice][rewrite]") {
   CHECK(rewritten("G90\nG1 Z0.3\n", gcode::Fixed::from_decimal(-1, 1), 1, false, {}) == "G90\nG1 Z0.2\n");
   std::string in = "G90\nG1 Z1.25 X1 ; lift\nG0 Z.4\nG92 Z2\nG91\nG1 Z0.5\nG90\nG1 X2\n";
-  CHECK(rewritten(in, dec(2, 1), 1, false, {}) ==
+  CHECK(rewritten(in, fixed_of(2, 1), 1, false, {}) ==
         "G90\nG1 Z1.45 X1 ; lift\nG0 Z0.6\nG92 Z2.2\nG91\nG1 Z0.5\nG90\nG1 X2\n");
   // Shifts keep the input's decimals: no binary noise.
-  CHECK(rewritten("G90\nG1 Z0.1\n", dec(2, 1), 1, false, {}) == "G90\nG1 Z0.3\n");
+  CHECK(rewritten("G90\nG1 Z0.1\n", fixed_of(2, 1), 1, false, {}) == "G90\nG1 Z0.3\n");
 }
 
 TEST_CASE("splice rewrite: E into the other mode, the coordinate carried", "[splice][rewrite]") {
@@ -85,7 +85,7 @@ TEST_CASE("splice rewrite: E into the other mode, the coordinate carried", "[spl
   // A mode line of the source's own switches the output to it.
   CHECK(rewritten("M82\nG1 X1 E1\nM83\nG1 X2 E0.5\n", {}, 1, true, {}) == "M82\nG1 X1 E1\nM83\nG1 X2 E0.5\n");
   // A relative source written as coordinates from 10.
-  CHECK(rewritten("M83\nG1 X1 E0.5\nG1 X2 E.25\nG1 E-0.8\n", {}, 1, false, dec(10, 0)) ==
+  CHECK(rewritten("M83\nG1 X1 E0.5\nG1 X2 E.25\nG1 E-0.8\n", {}, 1, false, fixed_of(10, 0)) ==
         "M83\nG1 X1 E10.5\nG1 X2 E10.75\nG1 E9.95\n");
 }
 
@@ -156,7 +156,7 @@ TEST_CASE("splice stage: a layer left out and printed again from the input itsel
     a.shift = c.shift;
     if (info.index == 3) {
       a.keep = false;
-      a.shift -= dec(2, 1);
+      a.shift -= fixed_of(2, 1);
     }
     if (info.index == 6) {
       const gcode::PassedLayer& p = *c.previous;
@@ -168,7 +168,7 @@ TEST_CASE("splice stage: a layer left out and printed again from the input itsel
       b.end = p.end;
       b.first_layer = p.info;
       b.start = p.start;
-      b.z_shift = c.shift + dec(2, 1);
+      b.z_shift = c.shift + fixed_of(2, 1);
       a.shift = b.z_shift;
       a.blocks.push_back(b);
     }

@@ -34,7 +34,7 @@ struct Seen {
   std::uint64_t number;
 };
 
-class Recorder : public Stage {
+class StageRecorder : public Stage {
  public:
   void line(const TrackedLine& t, Emitter& out) override {
     seen.push_back({std::string(t.raw.text), t.origin, t.before.position[gcode::kX], t.state.position[gcode::kX],
@@ -84,7 +84,7 @@ TEST_CASE("stage: a later stage sees the stream as changed, with its states", "[
       out.pass(t);
     }
   });
-  Recorder rec;
+  StageRecorder rec;
   gctest::run_stages("G1 X10\nG1 Y5\nG1 X30\nG1 Y6\n", {&edit, &rec}, false);
   REQUIRE(rec.seen.size() == 5);
   CHECK(rec.seen[0].text == "G1 X20");
@@ -110,7 +110,7 @@ TEST_CASE("stage: a later stage does not see the state of a dropped line", "[sta
   FnStage drop([](const TrackedLine& t, Emitter& out) {
     if (!is(t, "G1 X10")) out.pass(t);
   });
-  Recorder rec;
+  StageRecorder rec;
   std::string out = gctest::run_stages("G1 X1\nG1 X10\nG1 Y5\nG1 X30\nG1 Y6\n", {&drop, &rec}, false);
   CHECK(out == "G1 X1\nG1 Y5\nG1 X30\nG1 Y6\n");
   REQUIRE(rec.seen.size() == 4);
@@ -135,7 +135,7 @@ TEST_CASE("stage: the emitter's state is what an inserted line starts from", "[s
     }
     out.pass(t);
   });
-  Recorder rec;  // reads states: inserted lines are applied
+  StageRecorder rec;  // reads states: inserted lines are applied
   gctest::run_stages("G1 Z1\nG1 X2\n", {&probe, &rec}, false);
   CHECK(z_seen == std::vector<double>{1, 3, 3});
 }
@@ -147,7 +147,7 @@ TEST_CASE("stage: switched off mid-stream, a stage is skipped until switched on"
     if (is(t, "G1 X4")) upper.set_enabled(true);
     out.pass(t);
   });
-  Recorder rec;
+  StageRecorder rec;
   std::string out = gctest::run_stages("G1 X1\nG1 X2\nG1 X3\nG1 X4\n", {&control, &upper, &rec}, false);
   CHECK(out == "G1 X1 ; seen\nG1 X2\nG1 X3\nG1 X4 ; seen\n");
   REQUIRE(rec.seen.size() == 4);
@@ -170,7 +170,7 @@ TEST_CASE("stage: lines added before a layer event end the previous layer", "[st
     }
     void finish(Emitter& out) override { out.insert("; finished"); }
   } marker;
-  Recorder rec;
+  StageRecorder rec;
   std::string text = ";LAYER:0\nG1 Z0.2\nG1 X1 E1\n;LAYER:1\nG1 Z0.4\nG1 X2 E2\nM84\n";
   std::string out = gctest::run_stages(text, {&marker, &rec});
   CHECK(out ==

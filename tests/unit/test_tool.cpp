@@ -23,18 +23,18 @@ using gcode::cli::Tool;
 
 namespace {
 
-struct Outcome {
+struct ToolOutcome {
   int status = -1;
   std::string out, err;
 };
 
 // Runs `tool` on `args` (without the program name) with `body`.
-Outcome run(Tool& tool, std::vector<std::string> args, const std::function<int()>& body = [] { return 0; }) {
+ToolOutcome run(Tool& tool, std::vector<std::string> args, const std::function<int()>& body = [] { return 0; }) {
   args.insert(args.begin(), tool.name());
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
-  Outcome o;
+  ToolOutcome o;
   o.err = gctest::stderr_of([&] { o.out = gctest::stdout_of([&] { o.status = tool.run(static_cast<int>(args.size()), argv.data(), body); }); });
   return o;
 }
@@ -45,13 +45,13 @@ TEST_CASE("tool: what the body throws decides the exit status and message", "[to
   Tool tool("gc-test", "A test tool");
   CHECK(run(tool, {}, [] { return 0; }).status == 0);
   CHECK(run(tool, {}, [] { return 3; }).status == 3);
-  Outcome usage = run(tool, {}, []() -> int { throw gcode::cli::UsageError("--every needs a number"); });
+  ToolOutcome usage = run(tool, {}, []() -> int { throw gcode::cli::UsageError("--every needs a number"); });
   CHECK(usage.status == 2);
   CHECK(usage.err == "gc-test: --every needs a number (see gc-test --help)\n");
-  Outcome input = run(tool, {}, []() -> int { throw gcode::cli::InputError("--before-layer 80: the file has 60 layers"); });
+  ToolOutcome input = run(tool, {}, []() -> int { throw gcode::cli::InputError("--before-layer 80: the file has 60 layers"); });
   CHECK(input.status == 1);
   CHECK(input.err == "gc-test: --before-layer 80: the file has 60 layers\n");
-  Outcome io = run(tool, {}, []() -> int { throw std::runtime_error("x.gcode: No such file or directory"); });
+  ToolOutcome io = run(tool, {}, []() -> int { throw std::runtime_error("x.gcode: No such file or directory"); });
   CHECK(io.status == 1);
   CHECK(io.err == "gc-test: x.gcode: No such file or directory\n");
 }
@@ -78,7 +78,7 @@ TEST_CASE("tool: the shared filter options", "[tool]") {
   FilterOptions o;
   tool.add_filter_options(o);
   CHECK(o.tool == "gc-test");
-  Outcome ok = run(tool, {"-o", "out.gcode", "-vv", "--layer-marker", "^L(\\d+)", "--e-mode", "relative", "in.gcode"});
+  ToolOutcome ok = run(tool, {"-o", "out.gcode", "-vv", "--layer-marker", "^L(\\d+)", "--e-mode", "relative", "in.gcode"});
   CHECK(ok.status == 0);
   CHECK(o.file == "in.gcode");
   CHECK(o.output == "out.gcode");
@@ -105,7 +105,7 @@ TEST_CASE("tool: usage errors exit 2 in one message style", "[tool]") {
       if (o.output == "forbidden") throw gcode::cli::UsageError("-o forbidden: no");
     });
     bool ran = false;
-    Outcome r = run(tool, std::move(args), [&] {
+    ToolOutcome r = run(tool, std::move(args), [&] {
       ran = true;
       return 0;
     });
@@ -131,7 +131,7 @@ TEST_CASE("tool: --layers, --z-range and --types are checked before the body", "
     Tool tool("gc-test", "A test tool");
     gcode::SelectionText text;
     tool.add_selection(text, "Work only in");
-    Outcome r = run(tool, std::move(args));
+    ToolOutcome r = run(tool, std::move(args));
     if (err != nullptr) *err = r.err;
     return r.status;
   };
@@ -150,7 +150,7 @@ TEST_CASE("tool: validators share one message", "[tool]") {
     Tool tool("gc-test", "A test tool");
     double v = 0;
     tool.app().add_option("--retract", v)->check(positive ? gcode::cli::positive() : gcode::cli::non_negative());
-    Outcome r = run(tool, {"--retract", value});
+    ToolOutcome r = run(tool, {"--retract", value});
     *err = r.err;
     return r.status;
   };
@@ -174,10 +174,10 @@ TEST_CASE("tool: --version is the CMake project version, --help exits 0", "[tool
   REQUIRE(std::regex_search(text, m, std::regex(R"(project\(gcode-tools VERSION ([0-9.]+))")));
   CHECK(std::string(gcode::cli::version()) == m[1].str());
   Tool tool("gc-test", "A test tool");
-  Outcome v = run(tool, {"--version"}, []() -> int { throw std::logic_error("the body must not run"); });
+  ToolOutcome v = run(tool, {"--version"}, []() -> int { throw std::logic_error("the body must not run"); });
   CHECK(v.status == 0);
   CHECK(v.out == "gc-test " + m[1].str() + "\n");
-  Outcome h = run(tool, {"--help"}, []() -> int { throw std::logic_error("the body must not run"); });
+  ToolOutcome h = run(tool, {"--help"}, []() -> int { throw std::logic_error("the body must not run"); });
   CHECK(h.status == 0);
   CHECK(h.out.find("A test tool") != std::string::npos);
   CHECK(h.out.find("--version") != std::string::npos);

@@ -29,16 +29,15 @@ using Lines = std::vector<std::string>;
 
 namespace {
 
-const gcode::Precision kPrecision;
 
-struct Replay {
+struct TransitionReplay {
   MachineState after;
   double net = 0;        // filament the lines pushed
   double lowest_xy_z = 1e300;  // the lowest Z of any XY travel
 };
 
-Replay replay(const MachineState& from, const Lines& lines) {
-  Replay r;
+TransitionReplay replay(const MachineState& from, const Lines& lines) {
+  TransitionReplay r;
   r.after = from;
   for (const std::string& text : lines) {
     gcode::Move m = r.after.apply(gcode::Line::parse(text));
@@ -71,7 +70,7 @@ void require_at(const MachineState& a, const MachineState& b) {
 TEST_CASE("transition: mode steps write only what differs", "[transition]") {
   MachineState s = gctest::replay_state("G28\nM83\nG1 X10 Y10 Z1 F1200\n");
   Lines out;
-  Transition t(s, kPrecision, out);
+  Transition t(s, gctest::kPrecision, out);
   t.positioning(false);
   t.e_mode(true);
   t.e_coordinate(s.at(kE));
@@ -101,7 +100,7 @@ TEST_CASE("transition: mode steps write only what differs", "[transition]") {
 TEST_CASE("transition: E moves in the printer's mode, coordinate and pieces", "[transition]") {
   MachineState s = gctest::replay_state("G28\nM82\nG1 X10 Y10 Z1 F1200\nG1 X20 E5.0348\n");
   Lines out;
-  Transition t(s, kPrecision, out);
+  Transition t(s, gctest::kPrecision, out);
   t.extrude(-Fixed::from_double(0.8), 2100);
   t.extrude(Fixed(), 2100);  // nothing to push: no line
   t.extrude_mm(0.8, 35);
@@ -110,7 +109,7 @@ TEST_CASE("transition: E moves in the printer's mode, coordinate and pieces", "[
   // Relative E writes amounts; long pushes go in pieces the firmware takes.
   MachineState r = gctest::replay_state("G28\nM83\nG1 X10 Y10 Z1\n");
   Lines long_out;
-  Transition u(r, kPrecision, long_out);
+  Transition u(r, gctest::kPrecision, long_out);
   u.extrude_mm(320, 50);
   CHECK(long_out == Lines{"G1 E150 F3000", "G1 E150 F3000", "G1 E20 F3000"});
   CHECK(u.net_filament() == Fixed::from_int(320));
@@ -119,7 +118,7 @@ TEST_CASE("transition: E moves in the printer's mode, coordinate and pieces", "[
 TEST_CASE("transition: moves, safe height and heaters", "[transition]") {
   MachineState s = gctest::replay_state("G28\nM104 S200\nM140 S60\nG1 X10 Y10 Z1\n");
   Lines out;
-  Transition t(s, kPrecision, out, {.lift = 2, .max_z = 0, .z_feed = 600, .xy_feed = 3000, .g0 = false});
+  Transition t(s, gctest::kPrecision, out, {.lift = 2, .max_z = 0, .z_feed = 600, .xy_feed = 3000, .g0 = false});
   CHECK(t.safe_z(Fixed::from_double(1.23456)) == Fixed::from_double(3.235));
   t.move_z(Fixed::from_double(3));
   t.move_xy(Fixed::from_double(20.5), Fixed::from_int(30));
@@ -134,7 +133,7 @@ TEST_CASE("transition: moves, safe height and heaters", "[transition]") {
   CHECK(out == Lines{"M109 R180", "M104 T1 S210", "M190 S70", "M106 S128", "M107"});
   // A printer's height limit caps the lift.
   Lines capped;
-  Transition c(s, kPrecision, capped, {.lift = 5, .max_z = 4});
+  Transition c(s, gctest::kPrecision, capped, {.lift = 5, .max_z = 4});
   CHECK(c.safe_z(Fixed::from_int(1)) == Fixed::from_int(4));
 }
 
@@ -144,12 +143,12 @@ TEST_CASE("transition: between two running states returns the printer exactly", 
   MachineState to = gctest::replay_state(
       "G28\nM83\nM104 S205\nM140 S60\nM106 S255\nM220 S90\nM221 S95\nG1 X20 Y30 Z2.4 F2400\nG1 E-0.8\n");
   Lines out;
-  Transition t(from, kPrecision, out);
+  Transition t(from, gctest::kPrecision, out);
   Transition::Between how;
   how.top_z = 5;
   how.retracted_to = 0.8;
   t.between(to, how);
-  Replay r = replay(from, out);
+  TransitionReplay r = replay(from, out);
   require_at(r.after, to);
   // The travel is above everything printed; the E moves end as retracted as the target.
   CHECK(r.lowest_xy_z > 5);
@@ -163,7 +162,7 @@ TEST_CASE("transition: between from a reset printer heats, homes X Y, declares Z
   MachineState to = gctest::replay_state(
       "G28\nM83\nM140 S60\nM104 S215\nM106 S200\nG1 X50 Y60 Z12.2 F1800\nG92 E0\nG1 X55 E1.5\n");
   Lines out;
-  Transition t(reset, kPrecision, out, {.lift = 1, .e_feed = 1800});
+  Transition t(reset, gctest::kPrecision, out, {.lift = 1, .e_feed = 1800});
   Transition::Between how;
   how.top_z = 12.2;
   how.nozzle_z = 12.4;  // where the user says the nozzle stands
@@ -179,7 +178,7 @@ TEST_CASE("transition: between from a reset printer heats, homes X Y, declares Z
   for (const std::string& l : out) CHECK(l.rfind("G28 Z", 0) == std::string::npos);
   CHECK(std::find(out.begin(), out.end(), "G0 Z13.4 F600") != out.end());
   CHECK(std::find(out.begin(), out.end(), "G1 E3 F1800") != out.end());
-  Replay r = replay(reset, out);
+  TransitionReplay r = replay(reset, out);
   require_at(r.after, to);
   CHECK(r.lowest_xy_z > 12.2);
   CHECK(r.net == Approx(3));
@@ -189,12 +188,12 @@ TEST_CASE("transition: between says what it cannot know", "[transition]") {
   const MachineState reset;
   MachineState to = gctest::replay_state("G28\nG1 X50 Y60 Z2\n");
   Lines out;
-  Transition t(reset, kPrecision, out);
+  Transition t(reset, gctest::kPrecision, out);
   // Z unknown and no height given: the part is under the nozzle, no homing.
   CHECK_THROWS_AS(t.between(to, {}), std::invalid_argument);
-  Transition u(to, kPrecision, out);
+  Transition u(to, gctest::kPrecision, out);
   CHECK_THROWS_AS(u.between(reset, {}), std::invalid_argument);  // nowhere known to go
   MachineState inches = gctest::replay_state("G28\nG20\nG1 X1 Y1 Z1\n");
-  Transition v(inches, kPrecision, out);
+  Transition v(inches, gctest::kPrecision, out);
   CHECK_THROWS_AS(v.between(to, {}), std::invalid_argument);
 }
