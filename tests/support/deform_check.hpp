@@ -15,6 +15,7 @@
 //       length of the image), to 1 %.
 #include <algorithm>
 #include <array>
+#include <cstdlib>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -80,27 +81,44 @@ class Grid {
       for (long j = cell(lo[1]); j <= cell(hi[1]); ++j) cells_[key(layer, i, j)].push_back(segments_.size() - 1);
   }
   // The nearest segment of `layer` within `reach` cells; null if none.
+  // Ring by ring around p's cell, ending once every cell left lies farther
+  // than the nearest so far: the answer of measuring every segment of the
+  // (2 reach + 1)^2 cells, to the bit, first of equals included (in the
+  // order of that scan: column, row, then the order segments were added).
   const Segment* nearest(int layer, const P3& p, double& d, double& t, long reach = 2) const {
     const Segment* best = nullptr;
+    std::array<long long, 3> best_rank{};
     d = std::numeric_limits<double>::infinity();
-    for (long i = cell(p[0]) - reach; i <= cell(p[0]) + reach; ++i)
-      for (long j = cell(p[1]) - reach; j <= cell(p[1]) + reach; ++j) {
-        auto it = cells_.find(key(layer, i, j));
-        if (it == cells_.end()) continue;
-        for (std::size_t k : it->second) {
-          // A segment whose box is farther than the nearest so far cannot
-          // replace it: skipped without its (costly) distance. The margin,
-          // far above rounding, keeps the answer bit for bit the one of
-          // measuring every segment, first found of equals included.
-          const std::array<double, 4>& box = boxes_[k];
-          const double bx = std::max({box[0] - p[0], 0.0, p[0] - box[2]});
-          const double by = std::max({box[1] - p[1], 0.0, p[1] - box[3]});
-          if (bx * bx + by * by > (d + 1e-9) * (d + 1e-9)) continue;
-          double tk = 0;
-          const double dk = to_segment(p, segments_[k].a, segments_[k].b, tk);
-          if (dk < d) d = dk, t = tk, best = &segments_[k];
+    const long ci = cell(p[0]), cj = cell(p[1]);
+    for (long r = 0; r <= reach; ++r) {
+      for (long i = ci - r; i <= ci + r; ++i)
+        for (long j = cj - r; j <= cj + r; ++j) {
+          if (std::max(std::labs(i - ci), std::labs(j - cj)) != r) continue;
+          auto it = cells_.find(key(layer, i, j));
+          if (it == cells_.end()) continue;
+          for (std::size_t k : it->second) {
+            // A segment whose box is farther than the nearest so far cannot
+            // replace it: skipped without its (costly) distance. The margin,
+            // far above rounding, keeps equals in.
+            const std::array<double, 4>& box = boxes_[k];
+            const double bx = std::max({box[0] - p[0], 0.0, p[0] - box[2]});
+            const double by = std::max({box[1] - p[1], 0.0, p[1] - box[3]});
+            if (bx * bx + by * by > (d + 1e-9) * (d + 1e-9)) continue;
+            double tk = 0;
+            const double dk = to_segment(p, segments_[k].a, segments_[k].b, tk);
+            if (dk > d) continue;
+            // Where a full scan meets the segment first: the first cell of
+            // its box inside the window, in column-then-row order.
+            const std::array<long long, 3> rank{std::max(cell(box[0]), ci - reach), std::max(cell(box[1]), cj - reach),
+                                                static_cast<long long>(k)};
+            if (dk < d || rank < best_rank) d = dk, t = tk, best = &segments_[k], best_rank = rank;
+          }
         }
-      }
+      // A cell beyond the rings so far is at least this far from p.
+      const double edge = std::min({p[0] - static_cast<double>(ci - r), static_cast<double>(ci + r + 1) - p[0],
+                                    p[1] - static_cast<double>(cj - r), static_cast<double>(cj + r + 1) - p[1]});
+      if (d < edge) break;
+    }
     return best;
   }
 
