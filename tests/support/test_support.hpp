@@ -18,6 +18,12 @@
 
 namespace gctest {
 
+// Whether the tree is built with the sanitizers: gc-send's timing figures
+// (pause now's distance, pacing against --no-pace) are defined for the
+// tools as users build them, and are checked only there; the instrumented
+// tree runs the same prints and checks that they come out exact.
+inline constexpr bool kTimingFiguresChecked = GC_INSTRUMENTED == 0;
+
 // Numbers written as the library writes them by default (stages keep a
 // reference to it: it lives as long as the program).
 inline const gcode::Precision kPrecision{};
