@@ -450,6 +450,13 @@ TEST_CASE("sender: a greeting while a resume asks M115 of a printer that kept ru
   s.on_line("start", 0.2);
   CHECK(s.stats().resets == 1);
   CHECK(s.output() == "M110 N40\n");
+  // The link drops during that handshake: the printer that reset needs its
+  // numbering set again, not M115 alone as the resume began.
+  s.written(s.output().size(), 0.2);
+  s.link_lost(0.3);
+  s.link_back(0.6);
+  CHECK(s.state() == SenderState::Handshake);
+  CHECK(s.output() == "M110 N40\n");
 }
 
 TEST_CASE("sender: M112 goes out at once and halts the printer", "[serial]") {

@@ -40,12 +40,14 @@ void Sender::start(double now) {
   }
 }
 
-// The questions before the first line; again after a link drop that cut
-// them short (sender_relink.cpp).
+// The questions before the first line; again after a reset
+// (restart_handshake) or a link drop that cut them short
+// (sender_relink.cpp). M110 unless a resume goes on with the numbering of
+// a printer that kept running.
 void Sender::begin_handshake(double now) {
   handshake_start_ = handshake_retry_ = now;
   caps_answered_ = false;
-  if (config_.handshake) {
+  if (!resumed_onto_running_printer()) {
     state_ = SenderState::Handshake;
     // Unnumbered: Marlin only checks numbers on lines that start with N, and
     // M110 N0 makes the next numbered line N1.

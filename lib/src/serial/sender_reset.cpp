@@ -208,11 +208,9 @@ void Sender::restart_handshake(double now) {
   paused_ = false;
   relink_ = Relink::None;
   position_asked_ = false;
-  caps_answered_ = false;
   timeouts_in_row_ = 0;
-  state_ = SenderState::Handshake;
-  handshake_start_ = handshake_retry_ = last_rx_ = now;
-  send_unnumbered(handshake_line(), false, false);
+  last_rx_ = now;
+  begin_handshake(now);  // M110: the numbering goes on from the print
 }
 
 void Sender::continue_after_reset(long long last_number, long long restore, int layer,
