@@ -29,7 +29,7 @@ bool Pacer::blocked(double now, int moves_in_flight, long long number, int plann
   const int held = moves_in_flight + ahead(now, planner_blocks);
   wake_ = kNever;
   // Beyond the model only on probes' word that the planner had room.
-  if (held < n || credit_.take()) return release(number, now);
+  if (held < n || (moves_in_flight < kCreditInFlight && credit_.take())) return release(number, now);
   const Planned* first = next_to_end(now, planner_blocks);
   const double next = first != nullptr ? first->end : kNever;
   // With nothing in flight no answer will come: wake when a block ends.

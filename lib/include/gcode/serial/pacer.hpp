@@ -42,10 +42,12 @@
 // the planner was full), let more moves go past the model each time, 1, 2,
 // 4 ... up to the planner's blocks; a late probe puts it back to one, a move
 // that clearly waited for a block stops it until the next probe's answer
-// (probe_credit.hpp). At the
-// file's pace the planner is full and the probes come late; a bet that
-// lost holds at most the command queue's moves more. A printer that answers probes at
-// once for another reason (a delta: Marlin returns before the planner)
+// (probe_credit.hpp). At the file's pace the planner is full and the
+// probes come late. Moves go beyond the model only while fewer than
+// kCreditInFlight are unanswered, so a bet that lost holds at most that
+// many beyond the planner (not the command queue's places: a host that
+// reads answers late released them all on a stale word, and `pause now`
+// at 2 x measured 3.214 mm once). A printer that answers probes at once for another reason (a delta: Marlin returns before the planner)
 // would seem always to have room: the one move let go on each probe's
 // word waits for a block; a few such waits (while no probe ever did) stop
 // the probes, and the speed learnt on their word is forgotten.
@@ -70,6 +72,7 @@ class Pacer {
   static constexpr double kOutpaced = 0.5;      // of the moves' time at the model's pace: a probe's round trip that long may be the limit
   static constexpr double kQuick = 0.5;         // of a block at the model's pace: a probe answered within it found room at once
   static constexpr double kStall = 4;           // blocks at the file's pace: a move's answer later than that is the host's stall
+  static constexpr int kCreditInFlight = 2;   // unanswered moves, fewer, when one goes on probes' word
   static constexpr int kFoundOut = 4;           // moves that waited while probes never did: probes are answered at once
 
   // A move `number` may go, with `moves_in_flight` sent and not answered
