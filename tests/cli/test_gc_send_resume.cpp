@@ -45,8 +45,13 @@ std::string printer_up(const std::string& dir) {
 std::string gc_send(const std::string& args) { return quote(tool_path("gc-send")) + " " + args; }
 
 // gc-send started with `args` and killed with SIGKILL after `seconds`.
-std::string killed_after(const std::string& args, double seconds) {
-  return gc_send(args) + " 2>/dev/null & gs=$!\nsleep " + std::to_string(seconds) +
+std::string killed_after(const std::string& args, double seconds, const std::string& journal = "") {
+  // Counted from the journal's first acknowledgement when one is named: a
+  // loaded machine can take a second to start gc-send and open the printer.
+  const std::string started =
+      journal.empty() ? ""
+                      : "for i in $(seq 5000); do grep -q '^A ' " + quote(journal) + " 2>/dev/null && break; sleep 0.002; done\n";
+  return gc_send(args) + " 2>/dev/null & gs=$!\n" + started + "sleep " + std::to_string(seconds) +
          "\nkill -9 $gs; wait $gs 2>/dev/null\n";
 }
 
@@ -76,7 +81,7 @@ TEST_CASE("gc-send --resume after kill -9: every command of the file once, in or
   std::string port = dir + "/printer";
   std::string journal = dir + "/print.journal";
   std::string script = printer_up(dir) +
-                       killed_after("-q --port " + quote(port) + " --journal " + quote(journal) + " " + quote(input), 2) +
+                       killed_after("-q --port " + quote(port) + " --journal " + quote(journal) + " " + quote(input), 2, journal) +
                        gc_send("--port " + quote(port) + " --resume " + quote(journal) + " " + quote(input)) +
                        "; s=$?; kill $vp; wait $vp; exit $s";
   auto r = run(script);
@@ -133,7 +138,7 @@ TEST_CASE("gc-send --resume refuses, exit 1, nothing sent: another file, a corru
            quote(dir + "/err-" + name) + "\n";
   };
   std::string script =
-      printer_up(dir) + killed_after("-q --port " + quote(port) + " --journal " + quote(journal) + " " + quote(input), 2) +
+      printer_up(dir) + killed_after("-q --port " + quote(port) + " --journal " + quote(journal) + " " + quote(input), 2, journal) +
       "sleep 2\n"  // the printer has run everything it took
       "n=$(" + numbered + ")\n"
       "sed '5s/ n=/ n=9/' " + quote(journal) + " > " + quote(dir + "/corrupt.journal") + "\n"
@@ -192,7 +197,7 @@ TEST_CASE("gc-send killed with SIGKILL at random moments, resumed each time: the
   for (int kill = 0; kill < 4 && !finished; ++kill) {
     double at = moment(rng);
     INFO("kill " << kill << " after " << at << " s");
-    run(killed_after(kill == 0 ? first : again, at));
+    run(killed_after(kill == 0 ? first : again, at, kill == 0 ? journal : ""));
     gcode::serial::JournalContents c;
     REQUIRE_NOTHROW(c = gcode::serial::read_journal(journal));
     REQUIRE_FALSE(c.entries.empty());
@@ -260,7 +265,7 @@ TEST_CASE("gc-send --resume inside a layer: the resumed session is in that layer
   // file's next layer marker.
   std::string script =
       printer_up(dir) +
-      killed_after("-q --port " + quote(port) + " --journal " + quote(journal) + " " + quote(input), 2) +
+      killed_after("-q --port " + quote(port) + " --journal " + quote(journal) + " " + quote(input), 2, journal) +
       "n0=" + numbered + "\n(while [ " + numbered + " -lt $((n0 + 20)) ]; do sleep 0.005; done; kill -USR1 $vp) &\n" +
       gc_send("--port " + quote(port) + " --resume " + quote(journal) + " " + quote(input)) +
       "; s=$?; kill $vp; wait $vp; exit $s";

@@ -111,6 +111,10 @@ std::string quote(std::string_view arg) {
   return q + "'";
 }
 
+std::string wait_for_fifo(const std::string& path) {
+  return "for i in $(seq 1000); do [ -p " + quote(path) + " ] && break; sleep 0.01; done\n";
+}
+
 std::string tool_command(std::string_view tool, const std::string& args) {
   return quote(tool_path(tool)) + " " + args;
 }

@@ -65,6 +65,10 @@ struct RunResult {
 // Runs a shell command line (arguments already quoted), feeding `input` on stdin.
 RunResult run(const std::string& command_line, std::string_view input = {});
 std::string quote(std::string_view arg);
+// A shell snippet that waits (up to 10 s) until gc-send made its control
+// FIFO at `path`: written before, `echo pause > path` makes a regular file,
+// which gc-send then refuses (a loaded machine starts gc-send late).
+std::string wait_for_fifo(const std::string& path);
 // The shell command line that runs a built tool with `args` (already quoted).
 std::string tool_command(std::string_view tool, const std::string& args);
 
