@@ -15,8 +15,8 @@
 //       length of the image), to 1 %.
 #include <algorithm>
 #include <array>
-#include <cstdlib>
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <limits>
 #include <string>

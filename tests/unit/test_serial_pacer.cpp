@@ -420,20 +420,26 @@ TEST_CASE("pacer: behind a link, a printer at the file's pace or a little faster
   // At the file's pace its probes come late, or soon after a move that
   // takes longer than their round trip: one move goes per block that ends.
   // Faster, probes that find room may let more go (probe_credit.hpp), but
-  // only while fewer than Pacer::kCreditInFlight moves are unanswered: a
-  // bet that lost holds no more than those beyond the planner, whatever
-  // the command queue would take. (gc-send's pause now at 2 x stays within
-  // 3.2 mm on the virtual printer.)
-  for (double factor : {1.0, 1.25, 2.0}) {
-    INFO("printer at " << factor << " x");
-    Linked s;
-    s.factor = factor;
-    AgainstUnpaced r = against_unpaced(s, 1000);
-    INFO("paced " << r.paced_time << " s, starved " << r.paced_starved << "; unpaced " << r.unpaced_time
-                  << " s, starved " << r.unpaced_starved);
-    CHECK(r.paced_ahead <= static_cast<std::size_t>(s.blocks + (factor > 1 ? Pacer::kCreditInFlight : 0)));
-    CHECK(r.paced_time <= 1.05 * r.unpaced_time);
-    CHECK(r.paced_starved <= r.unpaced_starved + 0.01 * r.unpaced_time);
+  // only while fewer than two moves are unanswered (Pacer::kCreditInFlight):
+  // a bet that lost holds no more than those beyond the planner, whatever
+  // the command queue would take (4 places, or 8), and the link still runs
+  // full at 10 x. (gc-send's pause now at 2 x stays within 3.2 mm on the
+  // virtual printer.)
+  for (int queue : {4, 8}) {
+    for (double factor : {1.0, 1.25, 2.0, 10.0}) {
+      INFO("printer at " << factor << " x, a queue of " << queue);
+      Linked s;
+      s.factor = factor;
+      s.queue = queue;
+      AgainstUnpaced r = against_unpaced(s, 1000);
+      INFO("paced " << r.paced_time << " s, starved " << r.paced_starved << "; unpaced " << r.unpaced_time
+                    << " s, starved " << r.unpaced_starved);
+      CHECK(r.paced_ahead <= static_cast<std::size_t>(s.blocks + (factor > 1 ? 2 : 0)));
+      CHECK(r.paced_time <= 1.05 * r.unpaced_time);
+      // (At 10 x the planner starves either way; its test above, on 2000
+      // moves, holds paced within 1 % of unpaced.)
+      if (factor < 10) CHECK(r.paced_starved <= r.unpaced_starved + 0.01 * r.unpaced_time);
+    }
   }
 }
 
@@ -453,21 +459,6 @@ TEST_CASE("pacer: behind a link, a printer that answers moves of no length at on
   CHECK(s.probes_sent == sent);
   CHECK(s.most_ahead <= static_cast<std::size_t>(s.blocks));
   CHECK(s.pacer.speed_factor() <= 1.0 + 1e-9);
-}
-
-TEST_CASE("pacer: moves beyond the model go on probes' word only while few are unanswered", "[serial][pacer]") {
-  // A command queue of 8 would take the moves of a lost bet: the bound is
-  // the pacer's, not the queue's, and the link still runs full at 10 x.
-  for (double factor : {1.25, 2.0, 10.0}) {
-    INFO("printer at " << factor << " x");
-    Linked s;
-    s.factor = factor;
-    s.queue = 8;
-    AgainstUnpaced r = against_unpaced(s, 1000);
-    INFO("paced " << r.paced_time << " s, unpaced " << r.unpaced_time << " s");
-    CHECK(r.paced_ahead <= static_cast<std::size_t>(s.blocks + 2));  // Pacer::kCreditInFlight
-    CHECK(r.paced_time <= 1.05 * r.unpaced_time);
-  }
 }
 
 TEST_CASE("probe credit: probes that find room double the moves they let go, a late one puts it back to one, a move that waited stops the doubling", "[serial][pacer]") {

@@ -47,10 +47,11 @@
 // kCreditInFlight are unanswered, so a bet that lost holds at most that
 // many beyond the planner (not the command queue's places: a host that
 // reads answers late released them all on a stale word, and `pause now`
-// at 2 x measured 3.214 mm once). A printer that answers probes at once for another reason (a delta: Marlin returns before the planner)
-// would seem always to have room: the one move let go on each probe's
-// word waits for a block; a few such waits (while no probe ever did) stop
-// the probes, and the speed learnt on their word is forgotten.
+// at 2 x measured 3.214 mm once). A printer that answers probes at once
+// for another reason (a delta: Marlin returns before the planner) would
+// seem always to have room: the one move let go on each probe's word waits
+// for a block; a few such waits (while no probe ever did) stop the probes,
+// and the speed learnt on their word is forgotten.
 #include <algorithm>
 #include <array>
 #include <cstddef>
@@ -72,7 +73,7 @@ class Pacer {
   static constexpr double kOutpaced = 0.5;      // of the moves' time at the model's pace: a probe's round trip that long may be the limit
   static constexpr double kQuick = 0.5;         // of a block at the model's pace: a probe answered within it found room at once
   static constexpr double kStall = 4;           // blocks at the file's pace: a move's answer later than that is the host's stall
-  static constexpr int kCreditInFlight = 2;   // unanswered moves, fewer, when one goes on probes' word
+  static constexpr int kCreditInFlight = 2;     // a move goes on probes' word only while fewer are unanswered
   static constexpr int kFoundOut = 4;           // moves that waited while probes never did: probes are answered at once
 
   // A move `number` may go, with `moves_in_flight` sent and not answered
