@@ -32,10 +32,9 @@ TEST_CASE("gc-send: a second gc-send on a journal or a port in use, or a --resum
   };
   std::string script =
       quote(tool_path("gc-virtual-printer")) + " -q --time-scale 20 --link " + quote(link) + " --log " +
-      quote(dir + "/executed.log") + " & vp=$!\n"
-      "for i in $(seq 500); do [ -e " + quote(link) + " ] && break; sleep 0.01; done\n" +
-      send + "--journal " + quote(journal) + " " + quote(input) + " & gs=$!\n"
-      "for i in $(seq 500); do [ -s " + quote(journal) + " ] && break; sleep 0.01; done\nsleep 0.3\n" +
+      quote(dir + "/executed.log") + " & vp=$!\n" + gctest::wait_for_link(link) + send + "--journal " +
+      quote(journal) + " " + quote(input) + " & gs=$!\n" + gctest::wait_until("[ -s " + quote(journal) + " ]", 500) +
+      "sleep 0.3\n" +
       refused("--journal " + quote(journal), second) + refused("--resume " + quote(journal), refused_resume) +
       refused("--no-journal", no_journal) + refused("--journal " + quote(dir + "/other.journal"), other_journal) +
       "kill -0 $gs || echo ended-before-the-kill\n"

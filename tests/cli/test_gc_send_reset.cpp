@@ -100,8 +100,7 @@ TEST_CASE("gc-send: a reset while paused resumes into the pause, the resume retu
   std::string dir = gctest::temp_dir();
   std::string status = dir + "/status.json", fifo = dir + "/control";
   auto wait_for = [&](const std::string& state) {
-    return "for i in $(seq 1000); do grep -q '\"" + state + "\"' " + quote(status) +
-           " 2>/dev/null && break; sleep 0.01; done\n";
+    return gctest::wait_until("grep -q '\"" + state + "\"' " + quote(status) + " 2>/dev/null");
   };
   std::string during = gctest::wait_for_fifo(fifo) + "sleep 0.15; echo pause > " + quote(fifo) + "\n" + wait_for("paused") +
                        "kill -USR1 $vp; sleep 0.3\n" + wait_for("paused") + "echo resume > " + quote(fifo);
@@ -144,7 +143,7 @@ gctest::RunResult killed_when(const std::string& dir, const std::string& input, 
   std::string script =
       quote(tool_path("gc-virtual-printer")) + " -q --time-scale 20 " + printer_args + " --link " +
       quote(port) + " --log " + quote(dir + "/executed.log") + " & vp=$!\n" +
-      "for i in $(seq 500); do [ -e " + quote(port) + " ] && break; sleep 0.01; done\n" + send + " -q " +
+      gctest::wait_for_link(port) + send + " -q " +
       quote(input) + " 2>/dev/null & gs=$!\n" + kill_when + "\nkill -9 $gs; wait $gs 2>/dev/null\n" + then + "\n" +
       send + " " + resume_args + " --resume " + quote(journal) + " " + quote(input) + " & gs=$!\n" +
       "wait $gs; s=$?; kill $vp; wait $vp; exit $s";
@@ -153,8 +152,7 @@ gctest::RunResult killed_when(const std::string& dir, const std::string& input, 
 
 // Waits until gc-send's status file says paused, or gc-send ($gs) ended.
 std::string wait_paused(const std::string& status) {
-  return "for i in $(seq 1000); do grep -q '\"paused\"' " + quote(status) +
-         " 2>/dev/null && break; kill -0 $gs || break; sleep 0.01; done\n";
+  return gctest::wait_until("{ grep -q '\"paused\"' " + quote(status) + " 2>/dev/null || ! kill -0 $gs; }");
 }
 
 // ... killed after `seconds`.
@@ -178,11 +176,11 @@ gctest::RunResult killed_while_pausing(const std::string& dir, const std::string
   std::string script =
       quote(tool_path("gc-virtual-printer")) + " -q --time-scale 20 " + printer_args + " --link " + quote(port) +
       " --log " + quote(dir + "/executed.log") + " & vp=$!\n" +
-      "for i in $(seq 500); do [ -e " + quote(port) + " ] && break; sleep 0.01; done\n" + send + " -q " +
+      gctest::wait_for_link(port) + send + " -q " +
       quote(reset_pieces()) + " 2>/dev/null & gs=$!\n" + gctest::wait_for_fifo(fifo) +
       // In layer 1, however late a loaded machine started gc-send (a pause in
       // the start code, before anything was extruded, is another case).
-      "for i in $(seq 1000); do grep -q '\"layer\": 1,' " + quote(status) + " 2>/dev/null && break; sleep 0.01; done\n" +
+      gctest::wait_until("grep -q '\"layer\": 1,' " + quote(status) + " 2>/dev/null") +
       "sleep 0.5; echo pause now > " + quote(fifo) + "\n" + kill_when +
       "\nkill -9 $gs; wait $gs 2>/dev/null; rm -f " + quote(status) + "\n" + between + "\n" + send + " --resume " +
       quote(journal) + " " + quote(reset_pieces()) + " & gs=$!\n" + wait_paused(status) +
@@ -229,6 +227,23 @@ TEST_CASE("gc-send --resume after kill -9: a reset in the resumed print comes ba
   }
 }
 
+namespace {
+
+// Waits until the printer acknowledged `lines` lines after the journal's
+// first record matching `marker` (restore=[1-9]: the way back after a
+// reset begins; paused=1: the pause block does).
+std::string acknowledged_after(const std::string& dir, const std::string& marker, int lines) {
+  const std::string journal = quote(dir + "/print.journal");
+  return gctest::wait_until("grep -q '" + marker + "' " + journal + " 2>/dev/null && [ $(awk '/" + marker +
+                                "/{r=1} r && /^A /' " + journal + " 2>/dev/null | wc -l) -ge " +
+                                std::to_string(lines) + " ]",
+                            5000, 0.002);
+}
+
+std::string in_way_back(const std::string& dir, int lines) { return acknowledged_after(dir, "restore=[1-9]", lines); }
+
+}  // namespace
+
 TEST_CASE("gc-send killed inside the way back after a printer reset: --resume makes the way back again",
           "[gc-send][reset][resume]") {
   auto expected = gctest::commands_of(gctest::read_file(reset_pieces()));
@@ -241,12 +256,8 @@ TEST_CASE("gc-send killed inside the way back after a printer reset: --resume ma
   for (int after : {0, 1, 2, 3, 5}) {
     INFO("killed " << after << " lines into the way back");
     std::string dir = gctest::temp_dir();
-    const std::string journal = quote(dir + "/print.journal");
-    const std::string acked = "$(awk '/restore=[1-9]/{r=1} r && /^A /' " + journal + " 2>/dev/null | wc -l)";
-    auto r = killed_when(dir, reset_pieces(),
-                         "for i in $(seq 5000); do grep -q 'restore=[1-9]' " + journal + " 2>/dev/null && [ " + acked +
-                             " -ge " + std::to_string(after) + " ] && break; sleep 0.002; done",
-                         "sleep 0.5", "", "--heat-rate 100 --fault reset@line=2500");
+    auto r = killed_when(dir, reset_pieces(), in_way_back(dir, after), "sleep 0.5", "",
+                         "--heat-rate 100 --fault reset@line=2500");
     INFO(r.err);
     REQUIRE(r.status == 0);
     if (r.err.find("inside the way back after a reset; that way back again") != std::string::npos) ++inside;
@@ -315,14 +326,9 @@ TEST_CASE("gc-send --resume of a print killed inside its pause block: the rest o
   for (int after : {0, 2, 3, 4, 5}) {
     INFO("killed " << after << " acknowledgements into the pause block");
     std::string dir = gctest::temp_dir();
-    const std::string journal = quote(dir + "/print.journal");
-    const std::string acked = "$(awk '/paused=1/{r=1} r && /^A /' " + journal + " | wc -l)";
-    auto r = killed_while_pausing(
-        dir, "--park 20,180 --wait-moves --beep --host-message waiting --rx-buffer 40 --rush 1",
-        "--heat-rate 1000 --planner 1 --queue 1",
-        "for i in $(seq 3000); do grep -q paused=1 " + journal + " 2>/dev/null && [ " + acked + " -ge " +
-            std::to_string(after) + " ] && break; sleep 0.002; done",
-        "sleep 0.3");
+    auto r = killed_while_pausing(dir, "--park 20,180 --wait-moves --beep --host-message waiting --rx-buffer 40 --rush 1",
+                                  "--heat-rate 1000 --planner 1 --queue 1", acknowledged_after(dir, "paused=1", after),
+                                  "sleep 0.3");
     INFO(r.err);
     REQUIRE(r.status == 0);
     if (r.err.find("stopped inside the pause block: its ") != std::string::npos) ++inside;
@@ -372,36 +378,36 @@ TEST_CASE("gc-send --resume through a link drop: before it starts, while it asks
   // drops for 0.25 s (5 simulated): just before the resumed session starts
   // (-1: the port is away for 2 s, which a loaded machine may take to start
   // gc-send); while gc-send asks the printer where it is: as soon as it has
-  // the port open (0), 0.03 s after it took the journal's lock; once the
-  // printer ran the handshake's M110 (1) or 20 commands of the way back (20).
+  // the port open, 0.03 s after it took the journal's lock; once the
+  // printer ran the handshake's M110 or 20 commands of the way back.
   // (Timed from gc-send's start alone, a loaded machine opened the port
   // after the drop had come and gone: CI counted 3 drops of 5.)
   int away = 0, while_asking = 0, in_handshake = 0, in_print = 0;
-  for (double after : {-1.0, 0.0, 0.03, 1.0, 20.0}) {
-    INFO("link dropped at " << after);
+  for (const char* when : {"before the start", "once the port is open", "0.03 s after the lock", "after M110",
+                           "20 commands into the way back"}) {
+    INFO("link dropped " << when);
+    const std::string what = when;
     std::string dir = gctest::temp_dir();
     const std::string journal = quote(dir + "/print.journal"), log = quote(dir + "/executed.log");
-    const std::string acked = "$(awk '/restore=[1-9]/{r=1} r && /^A /' " + journal + " 2>/dev/null | wc -l)";
-    std::string drop = "sleep 0.5; kill -USR2 $vp; sleep 0.05";
-    const std::string locked = "rm -f " + journal + ".lock; (for i in $(seq 10000); do [ -s " + journal +
-                               ".lock ] && break; sleep 0.001; done; ";
-    if (after == 0) {
-      // As soon as gc-send (its pid in the lock) has the port open.
-      drop = "sleep 0.5; pts=$(readlink -f " + quote(dir + "/printer") + "); " + locked +
-             "for i in $(seq 10000); do ls -l /proc/$(cat " + journal +
-             ".lock)/fd 2>/dev/null | grep -q \"$pts\" && break; sleep 0.001; done; kill -USR2 $vp) &";
-    } else if (after < 1) {
-      drop = "sleep 0.5; " + locked + "sleep " + std::to_string(after) + "; kill -USR2 $vp) &";
-    } else if (after >= 1) {
-      drop = "sleep 0.5; n=$(($(wc -l < " + log + ") + " + std::to_string(static_cast<int>(after)) +
-             ")); (for i in $(seq 10000); do [ $(wc -l < " + log + ") -gt $n ] && break; sleep 0.002; done; "
-             "kill -USR2 $vp) &";
+    // (The resumed gc-send writes its pid into the lock it takes.)
+    const std::string locked = "rm -f " + journal + ".lock; (" + gctest::wait_until("[ -s " + journal + ".lock ]", 10000, 0.001);
+    const std::string ran = "n=$(($(wc -l < " + log + ") + " + (what == "after M110" ? "1" : "20") + ")); (" +
+                            gctest::wait_until("[ $(wc -l < " + log + ") -gt $n ]", 10000, 0.002);
+    std::string drop = "sleep 0.5; ";
+    if (what == "before the start") {
+      drop += "kill -USR2 $vp; sleep 0.05";
+    } else if (what == "once the port is open") {
+      drop += "pts=$(readlink -f " + quote(dir + "/printer") + "); " + locked +
+              gctest::wait_until("ls -l /proc/$(cat " + journal + ".lock)/fd 2>/dev/null | grep -q \"$pts\"", 10000, 0.001) +
+              "kill -USR2 $vp) &";
+    } else if (what == "0.03 s after the lock") {
+      drop += locked + "sleep 0.03; kill -USR2 $vp) &";
+    } else {
+      drop += ran + "kill -USR2 $vp) &";
     }
-    auto r = killed_when(dir, reset_pieces(),
-                         "for i in $(seq 5000); do grep -q 'restore=[1-9]' " + journal + " 2>/dev/null && [ " + acked +
-                             " -ge 2 ] && break; sleep 0.002; done",
-                         drop, "--reconnect 60",
-                         std::string("--heat-rate 100 --fault reset@line=2500") + (after < 0 ? " --drop-seconds 40" : ""));
+    auto r = killed_when(dir, reset_pieces(), in_way_back(dir, 2), drop, "--reconnect 60",
+                         std::string("--heat-rate 100 --fault reset@line=2500") +
+                             (what == "before the start" ? " --drop-seconds 40" : ""));
     INFO(r.err);
     REQUIRE(r.status == 0);
     if (r.err.find("s for it (--reconnect)") != std::string::npos) ++away;

@@ -38,8 +38,7 @@ std::string subdivided_part(const std::string& dir) {
 std::string printer_up(const std::string& dir) {
   std::string link = dir + "/printer";
   return quote(tool_path("gc-virtual-printer")) + " -q --time-scale 20 --link " + quote(link) + " --log " +
-         quote(dir + "/executed.log") + " & vp=$!\nfor i in $(seq 500); do [ -e " + quote(link) +
-         " ] && break; sleep 0.01; done\n";
+         quote(dir + "/executed.log") + " & vp=$!\n" + gctest::wait_for_link(link);
 }
 
 std::string gc_send(const std::string& args) { return quote(tool_path("gc-send")) + " " + args; }
@@ -49,8 +48,7 @@ std::string killed_after(const std::string& args, double seconds, const std::str
   // Counted from the journal's first acknowledgement when one is named: a
   // loaded machine can take a second to start gc-send and open the printer.
   const std::string started =
-      journal.empty() ? ""
-                      : "for i in $(seq 5000); do grep -q '^A ' " + quote(journal) + " 2>/dev/null && break; sleep 0.002; done\n";
+      journal.empty() ? "" : gctest::wait_until("grep -q '^A ' " + quote(journal) + " 2>/dev/null", 5000, 0.002);
   return gc_send(args) + " 2>/dev/null & gs=$!\n" + started + "sleep " + std::to_string(seconds) +
          "\nkill -9 $gs; wait $gs 2>/dev/null\n";
 }
@@ -187,7 +185,7 @@ TEST_CASE("gc-send killed with SIGKILL at random moments, resumed each time: the
   std::string link = quote(port);
   REQUIRE(run(quote(tool_path("gc-virtual-printer")) + " -q --time-scale 20 --link " + link + " --log " +
               quote(dir + "/executed.log") + " >/dev/null 2>&1 & echo $! > " + quote(pid_file) +
-              "\nfor i in $(seq 500); do [ -e " + link + " ] && break; sleep 0.01; done")
+              "\n" + gctest::wait_for_link(port))
               .status == 0);
   std::mt19937 rng(22);  // seeded: the same moments on every run
   std::uniform_real_distribution<double> moment(0.5, 1.2);

@@ -54,7 +54,7 @@ std::string supervisor(const std::string& dir, const std::string& input, const s
                            " --reconnect 60";
   return quote(tool_path("gc-virtual-printer")) + " -q --time-scale 200 --heat-rate 1000 --link " + quote(port) +
          " --log " + quote(dir + "/executed.log") + " --fault " + faults + " & vp=$!\n" +
-         "for i in $(seq 500); do [ -e " + quote(port) + " ] && break; sleep 0.01; done\n" +
+         gctest::wait_for_link(port) +
          "cmd=" + quote(send + " " + quote(input)) + "\nkills=" + std::to_string(kills) + "\n" +
          "for session in $(seq 30); do\n"
          // exec: $gs is gc-send itself, not a subshell around it.

@@ -47,8 +47,8 @@ inline PtyRun send_through_pty(const std::string& file, const std::string& send_
   std::string log = dir + "/executed.log";
   std::string send = quote(tool_path("gc-send")) + " --port " + quote(link) + " " + send_args + " " + quote(file);
   std::string script = quote(tool_path("gc-virtual-printer")) + " -q --link " + quote(link) + " --log " + quote(log) +
-                       " " + printer_args + " & vp=$!\n"
-                       "for i in $(seq 500); do [ -e " + quote(link) + " ] && break; sleep 0.01; done\n" +
+                       " " + printer_args + " & vp=$!\n" +
+                       wait_for_link(link) +
                        (during.empty() ? send + "; status=$?\n" : send + " & gs=$!\n" + during + "\nwait $gs; status=$?\n") +
                        "kill $vp; wait $vp; exit $status";
   PtyRun r;

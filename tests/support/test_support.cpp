@@ -17,6 +17,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 #include "gcode/core/e_mode.hpp"
 #include "gcode/core/line.hpp"
 #include "gcode/core/line_reader.hpp"
@@ -111,9 +113,13 @@ std::string quote(std::string_view arg) {
   return q + "'";
 }
 
-std::string wait_for_fifo(const std::string& path) {
-  return "for i in $(seq 1000); do [ -p " + quote(path) + " ] && break; sleep 0.01; done\n";
+std::string wait_until(const std::string& condition, int tries, double pause) {
+  return fmt::format("for i in $(seq {}); do {} && break; sleep {:g}; done\n", tries, condition, pause);
 }
+
+std::string wait_for_fifo(const std::string& path) { return wait_until("[ -p " + quote(path) + " ]"); }
+
+std::string wait_for_link(const std::string& path) { return wait_until("[ -e " + quote(path) + " ]", 500); }
 
 std::string tool_command(std::string_view tool, const std::string& args) {
   return quote(tool_path(tool)) + " " + args;

@@ -65,10 +65,16 @@ struct RunResult {
 // Runs a shell command line (arguments already quoted), feeding `input` on stdin.
 RunResult run(const std::string& command_line, std::string_view input = {});
 std::string quote(std::string_view arg);
-// A shell snippet that waits (up to 10 s) until gc-send made its control
-// FIFO at `path`: written before, `echo pause > path` makes a regular file,
-// which gc-send then refuses (a loaded machine starts gc-send late).
+// A shell snippet that polls the shell test `condition` up to `tries`
+// times, `pause` seconds apart, and goes on once it holds (or after the
+// last try: the test's own checks then say what did not happen).
+std::string wait_until(const std::string& condition, int tries = 1000, double pause = 0.01);
+// ... until gc-send made its control FIFO at `path` (up to 10 s): written
+// before, `echo pause > path` makes a regular file, which gc-send then
+// refuses (a loaded machine starts gc-send late).
 std::string wait_for_fifo(const std::string& path);
+// ... until gc-virtual-printer made its pty's link at `path` (up to 5 s).
+std::string wait_for_link(const std::string& path);
 // The shell command line that runs a built tool with `args` (already quoted).
 std::string tool_command(std::string_view tool, const std::string& args);
 
