@@ -1,5 +1,7 @@
 #include "gcode/cli/layers_options.hpp"
 
+#include <CLI/CLI.hpp>
+
 #include "gcode/core/layer_range.hpp"
 
 namespace gcode::cli {

@@ -1,21 +1,13 @@
 #include "gcode/cli/pause_options.hpp"
 
+#include <CLI/CLI.hpp>
+
 #include <vector>
 
 #include "gcode/core/number.hpp"
 #include "gcode/transform/custom_gcode.hpp"
 
 namespace gcode::cli {
-
-namespace {
-
-std::vector<double> numbers(const std::string& text, const char* option) {
-  std::vector<double> list;
-  if (!parse_number_list(text, list)) throw UsageError(std::string(option) + ": '" + text + "' is not a list of numbers");
-  return list;
-}
-
-}  // namespace
 
 void add_pause_options(Tool& tool, PauseOptions& o, bool with_method) {
   CLI::App& app = tool.app();
@@ -102,7 +94,7 @@ void resolve_pause_options(PauseOptions& o) {
   if (o.dwell_given && c.method != PauseMethod::Dwell) throw UsageError("--dwell goes with --method G4");
   if (o.no_heat_wait && !o.standby_given) throw UsageError("--no-heat-wait goes with --standby-temp");
   if (o.max_z > 0 && c.min_park_z > o.max_z) throw UsageError("--min-park-z is above --max-z");
-  if (!o.park.empty() && numbers(o.park, "--park").size() != 2) throw UsageError("--park: give X,Y (e.g. 110,210)");
+  if (!o.park.empty() && option_numbers(o.park, "--park").size() != 2) throw UsageError("--park: give X,Y (e.g. 110,210)");
   Box2 bed;
   if (!o.bed.empty() && !parse_bed_size(o.bed, bed))
     throw UsageError("--bed: '" + o.bed + "' is not WIDTHxDEPTH in mm (e.g. 220x220)");
@@ -126,7 +118,7 @@ ParkRules park_rules(const PauseOptions& o, const PrintArea& file_area, PauseCon
     parse_bed_size(o.bed, park.area.bed);
   }
   if (!o.park.empty()) {
-    std::vector<double> xy = numbers(o.park, "--park");
+    std::vector<double> xy = option_numbers(o.park, "--park");
     park.given = true;
     park.x = xy[0];
     park.y = xy[1];

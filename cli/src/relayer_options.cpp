@@ -1,5 +1,7 @@
 #include "gcode/cli/relayer_options.hpp"
 
+#include <CLI/CLI.hpp>
+
 #include <fmt/format.h>
 
 #include <vector>

@@ -1,5 +1,7 @@
 #include "gcode/cli/seam_options.hpp"
 
+#include <CLI/CLI.hpp>
+
 #include "gcode/transform/splice.hpp"
 
 namespace gcode::cli {

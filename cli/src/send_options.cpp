@@ -1,5 +1,7 @@
 #include "gcode/cli/send_options.hpp"
 
+#include <CLI/CLI.hpp>
+
 #include <unistd.h>
 
 #include <charconv>

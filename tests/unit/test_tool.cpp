@@ -2,6 +2,7 @@
 // and I/O errors; 2 for usage errors, with "(see gc-NAME --help)"; a closed
 // pipe as SIGPIPE), the shared options and their rules, validators with one
 // message style, --version from the CMake project version.
+#include <CLI/CLI.hpp>
 #include <catch2/catch.hpp>
 
 #include <sys/wait.h>

@@ -9,9 +9,9 @@
 #include <cmath>
 #include <optional>
 
+#include "gcode/cli/deform_options.hpp"
 #include "gcode/cli/filter.hpp"
 #include "gcode/cli/tool.hpp"
-#include "gcode/core/number.hpp"
 #include "gcode/transform/deform.hpp"
 #include "gcode/transform/deform_center.hpp"
 
@@ -20,15 +20,7 @@ namespace {
 using gcode::cli::InputError;
 using gcode::cli::UsageError;
 
-struct Options {
-  gcode::cli::FilterOptions io;
-  gcode::DeformFormulas formulas;
-  gcode::DeformOptions deform;
-  std::vector<std::string> xyz, cylinder;
-  std::string center, bed;
-  double filament_diameter = 0;
-  bool keep_section = false;
-};
+using Options = gcode::cli::DeformToolOptions;
 
 bool regular(int fd) {
   struct stat st {};
@@ -89,47 +81,6 @@ int main(int argc, char** argv) {
       "cross-section, F the speed factor. Formulas (muparser) use x y z or r theta z, layer, s (path mm), pi.\n"
       "  gc-shape helix --diameter 60 --height 80 | gc-deform --cylinder 'r + 1.05*z' theta '0.3*z' > dish.gcode\n"
       "  gc-deform --xyz 'x + 0.2*z*sqrt(abs(y-110)/30)' y z circle.gcode > heart.gcode");
-  CLI::App& app = tool.app();
-  tool.add_filter_options(o.io);
-  auto* xyz = app.add_option("--xyz", o.xyz, "The new X, Y and Z as formulas in x, y, z")
-                  ->type_name("FX FY FZ")->expected(3)->allow_extra_args(false);
-  auto* cyl = app.add_option("--cylinder", o.cylinder, "The new radius, angle (radians) and Z in r, theta, z")
-                  ->type_name("FR FTHETA FZ")->expected(3)->allow_extra_args(false);
-  xyz->excludes(cyl);
-  app.add_option("--center", o.center, "Axis of --cylinder (default: the centre of the part)")->type_name("X,Y");
-  app.add_option("--width", o.formulas.width, "Factor on the bead's cross-section, a formula (default 1)")->type_name("FC");
-  app.add_option("--speed", o.formulas.speed, "Factor on the head speed of extrusions, a formula (default 1)")->type_name("FV");
-  app.add_flag("--keep-section", o.keep_section, "The cross-section is --width alone, not x dFZ/dz (the layers' new thickness)");
-  app.add_option("--tolerance", o.deform.tolerance, "Largest distance of the written path from the formula's image, mm")
-      ->type_name("MM")->capture_default_str();
-  app.add_option("--max-speed", o.deform.max_speed, "Cap on extrusion speed, mm/s (0 = none)")->type_name("MM_S")
-      ->check(gcode::cli::non_negative());
-  app.add_option("--max-flow", o.deform.max_flow, "Cap on the extruder's volume rate, mm3/s (0 = none)")->type_name("MM3_S")
-      ->check(gcode::cli::non_negative());
-  app.add_option("--filament-diameter", o.filament_diameter, "For --max-flow (default: the file's, else 1.75)")
-      ->type_name("MM")->check(gcode::cli::positive());
-  app.add_option("--bed", o.bed, "The bed, from 0,0 (default: the slicer's SLIC3R_* or the file's)")->type_name("WxD");
-  app.add_flag("--force", o.deform.force, "Print what dives into the part or jumps (never what leaves the bed); pass moves in inches unchanged");
-
-  tool.check([&] {
-    if (o.xyz.empty() && o.cylinder.empty()) throw UsageError("give the deformation: --xyz FX FY FZ or --cylinder FR FTHETA FZ");
-    o.formulas.frame = o.xyz.empty() ? gcode::DeformFrame::Cylindrical : gcode::DeformFrame::Cartesian;
-    const std::vector<std::string>& f = o.xyz.empty() ? o.cylinder : o.xyz;
-    o.formulas.map = {f[0], f[1], f[2]};
-    o.formulas.layer_scale = !o.keep_section;
-    std::vector<double> c;
-    if (!o.center.empty() && (!gcode::parse_number_list(o.center, c) || c.size() != 2))
-      throw UsageError(fmt::format("--center: expected X,Y, not '{}'", o.center));
-    if (c.size() == 2) o.formulas.center_x = c[0], o.formulas.center_y = c[1];
-    if (!o.bed.empty() && !gcode::parse_bed_size(o.bed, o.deform.bed))
-      throw UsageError(fmt::format("--bed: expected WIDTHxDEPTH in mm, not '{}'", o.bed));
-    o.deform.has_bed = !o.bed.empty();
-    try {
-      o.deform.validate();
-      gcode::DeformMap check(o.formulas);  // syntax and unknown names: a usage error with the position
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(e.what());
-    }
-  });
+  gcode::cli::add_deform_options(tool, o);
   return tool.run(argc, argv, [&] { return deform(o, tool); });
 }

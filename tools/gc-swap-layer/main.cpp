@@ -4,22 +4,13 @@
 
 #include "gcode/cli/filter.hpp"
 #include "gcode/cli/seam_options.hpp"
+#include "gcode/cli/swap_options.hpp"
 #include "gcode/cli/tool.hpp"
 #include "gcode/transform/layer_edits.hpp"
 #include "gcode/transform/splice.hpp"
 
-namespace {
-
-struct Options {
-  gcode::cli::FilterOptions io;
-  gcode::LayerEditsText edits;
-  gcode::SeamOptions seam;
-};
-
-}  // namespace
-
 int main(int argc, char** argv) {
-  Options o;
+  gcode::cli::SwapToolOptions o;
   gcode::cli::Tool tool(
       "gc-swap-layer",
       "gc-swap-layer: replace, skip and repeat layers of a print, or insert a block after a layer, with seams the\n"
@@ -29,35 +20,7 @@ int main(int argc, char** argv) {
       "  gc-swap-layer --skip 12-14 --repeat 20x2 part.gcode > out.gcode\n"
       "Layers count from 1 as gc-layers counts them; @Z names a layer by its height (@1.2, @1:2.4).\n"
       "Kept lines pass byte for byte, or with their Z shifted where layers were left out or added.");
-  CLI::App& app = tool.app();
-  tool.add_filter_options(o.io);
-  app.add_option("--layer", o.edits.replace, "Replace these layers (RANGE or @Z1:Z2; repeatable, each with a --with)")
-      ->allow_extra_args(false)
-      ->type_name("RANGE");
-  app.add_option("--with", o.edits.with,
-                 "...by the layers of FILE at the same Z, or by FILE's LAYERS in order; placed at the replaced Z")
-      ->allow_extra_args(false)
-      ->type_name("FILE[:LAYERS]");
-  app.add_option("--skip", o.edits.skip, "Leave these layers out; later layers come down by their thickness")
-      ->type_name("RANGE");
-  app.add_flag("--keep-z", o.edits.keep_z,
-               "With --skip: keep every Z and scale the next layer's extrusion by (h + skipped) / h (over-extrudes "
-               "by design)");
-  app.add_option("--repeat", o.edits.repeat, "Print LAYER N more times (default 1), later layers up (repeatable)")
-      ->allow_extra_args(false)
-      ->type_name("LAYER[xN]");
-  app.add_option("--insert-after", o.edits.insert_after,
-                 "Print the layers of the --file after LAYER, on top of it; later layers up (repeatable)")
-      ->allow_extra_args(false)
-      ->type_name("LAYER");
-  app.add_option("--file", o.edits.insert_file, "The block for an --insert-after (its layers; start and end code left out)")
-      ->allow_extra_args(false)
-      ->type_name("FILE");
-  gcode::cli::add_seam_options(tool, o.seam);
-  tool.check([&] {
-    o.edits.validate();
-    o.seam.validate();
-  });
+  gcode::cli::add_swap_options(tool, o);
 
   return tool.run(argc, argv, [&] {
     gcode::Diagnostics diag = tool.diagnostics(o.io);
