@@ -91,12 +91,22 @@ run_target() {
     local code=$?
     tail -n 60 "$build/$target.log" >&2
     echo "fuzz: $target FAILED (exit $code); reproduce with $build/bin/$target $build/artifacts/<crash-file>" >&2
-    status=1
-    return
+    return 1
   }
   grep -E '^stat::number_of_executed_units|^stat::peak_rss_mb' "$build/$target.log" | sed "s/^/fuzz: $target: /" >&2 || true
   echo "fuzz: $target: no crash in ${seconds}s" >&2
 }
-run_target fuzz_pipeline "$work" "$seeds" 65536
-run_target fuzz_sender "$sender_work" "$sender_seeds" 8192
+# Each target is one process on one core: with two cores they run side by
+# side, each still for its full SECONDS.
+if [ "$(nproc)" -ge 2 ]; then
+  run_target fuzz_pipeline "$work" "$seeds" 65536 &
+  pipeline=$!
+  run_target fuzz_sender "$sender_work" "$sender_seeds" 8192 &
+  sender=$!
+  wait "$pipeline" || status=1
+  wait "$sender" || status=1
+else
+  run_target fuzz_pipeline "$work" "$seeds" 65536 || status=1
+  run_target fuzz_sender "$sender_work" "$sender_seeds" 8192 || status=1
+fi
 exit $status

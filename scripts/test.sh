@@ -9,20 +9,25 @@
 # tree's objects instead of compiling the library a third time. Line tables
 # only (-gline-tables-only) and -O1 there: the sanitizers' reports keep file
 # and line, the build is lighter (README, "How long scripts/test.sh takes").
+#
+# ctest runs 2 x cores slots: a test that keeps a core busy takes two, one
+# of gc-send's tests (mostly waiting for the virtual printer) one
+# (tests/CMakeLists.txt, PROCESSORS).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 jobs=$(nproc)
+slots=$((2 * jobs))
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DGCODE_WERROR=ON >/dev/null
 cmake --build build -j"$jobs"
-ctest --test-dir build --output-on-failure -j"$jobs"
+ctest --test-dir build --output-on-failure -j"$slots"
 
 CC=clang CXX=clang++ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGCODE_WERROR=ON \
   -DGCODE_SANITIZE=ON -DGCODE_FUZZ=ON "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -gline-tables-only -DNDEBUG" >/dev/null
 cmake --build build-asan -j"$jobs"
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-  ctest --test-dir build-asan --output-on-failure -j"$jobs"
+  ctest --test-dir build-asan --output-on-failure -j"$slots"
 
 if [ -x fuzz/run.sh ]; then
   fuzz/run.sh 20 build-asan
