@@ -228,8 +228,7 @@ TEST_CASE("gc-send --resume after a kill -9 inside gc-send's closing M400: the p
   std::string numbered = numbered_count(dir);
   std::string script =
       printer_up(dir) + gc_send("-q --port " + quote(port) + " --journal " + quote(journal) + " " + quote(input)) +
-      " 2>/dev/null & gs=$!\n"
-      "for i in $(seq 3000); do grep -q ' own=1 ' " + quote(journal) + " && break; sleep 0.005; done\n"
+      " 2>/dev/null & gs=$!\n" + gctest::wait_until("grep -q ' own=1 ' " + quote(journal), 3000, 0.005) +
       "kill -9 $gs; wait $gs 2>/dev/null\n"
       "grep -q '^F ' " + quote(journal) + " && echo finished-before-the-kill\n"
       "sleep 1\n"  // the printer runs its queue down
@@ -309,11 +308,10 @@ TEST_CASE("gc-send --resume after a kill -9 while a cancel's end went out: never
         // lands inside it however late a loaded machine runs the script.
         printer_up(dir) + gc_send("-q --lift 10 --z-speed 0.5 --port " + quote(port) + " --journal " + quote(journal) +
                                   " --control " + quote(fifo) + " " + quote(input)) +
-        " 2>/dev/null & gs=$!\n"
-        "for i in $(seq 1000); do grep -q ' layer=1 ' " + quote(journal) + " 2>/dev/null && break; sleep 0.01; done\n"
+        " 2>/dev/null & gs=$!\n" + gctest::wait_until("grep -q ' layer=1 ' " + quote(journal) + " 2>/dev/null") +
         "sleep 0.3\n"  // inside layer 1
-        "echo cancel > " + quote(fifo) + "\n"
-        "for i in $(seq 2000); do grep -q ' state=cancelling ' " + quote(journal) + " && break; sleep 0.002; done\n"
+        "echo cancel > " + quote(fifo) + "\n" +
+        gctest::wait_until("grep -q ' state=cancelling ' " + quote(journal), 2000, 0.002) +
         "kill -9 $gs; wait $gs 2>/dev/null\n"
         "grep -q '^F ' " + quote(journal) + " && echo finished-before-the-kill\n" +
         (reset ? "kill -USR1 $vp\n" : "") +

@@ -79,8 +79,7 @@ inline PauseRun send_with_control(const std::string& file, const std::string& pr
   std::string cmd = "F=" + quote(fifo) + "; S=" + quote(status) + "\n" + quote(tool_path("gc-send")) +
                     " -v --port virtual:" + printer + ",log=" + log + " --control \"$F\" --status-file \"$S\" " + bed + " " + args +
                     " " + quote(file) +
-                    " & p=$!\n"
-                    "for i in $(seq 500); do [ -p \"$F\" ] && break; sleep 0.01; done\n"
+                    " & p=$!\n" + wait_for_fifo(fifo) +
                     "paused() { for i in $(seq 1000); do grep -q '\"state\": \"paused\"' \"$S\" 2>/dev/null && return; "
                     "sleep 0.01; done; }\n"
                     "at_layer() { for i in $(seq 1000); do grep -q \"\\\"layer\\\": $1,\" \"$S\" 2>/dev/null && return; "
