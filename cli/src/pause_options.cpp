@@ -4,7 +4,6 @@
 
 #include <vector>
 
-#include "gcode/core/number.hpp"
 #include "gcode/transform/custom_gcode.hpp"
 
 namespace gcode::cli {
