@@ -16,6 +16,7 @@
 
 #include "gcode/core/line.hpp"
 #include "gcode/core/machine_state.hpp"
+#include "gcode/serial/journal.hpp"
 #include "pty_run.hpp"
 #include "reset_check.hpp"
 #include "test_support.hpp"
@@ -225,6 +226,36 @@ TEST_CASE("gc-send --resume after kill -9: a reset in the resumed print comes ba
     CHECK(r.err.find("the printer reset (it said \"start\")") != std::string::npos);
     CHECK(require_resumed(gctest::read_file(dir + "/executed.log"), expected).resets == 1);
   }
+}
+
+TEST_CASE("gc-send --resume killed the moment its journal replaced the old one, then a printer reset: the next "
+          "resume goes back to where that one went on, nothing redone",
+          "[gc-send][reset][resume]") {
+  auto expected = gctest::commands_of(gctest::read_file(reset_pieces()));
+  std::string dir = gctest::temp_dir();
+  const std::string journal = quote(dir + "/print.journal");
+  const std::string inode = "stat -c %i " + journal + " 2>/dev/null";
+  // The second gc-send is killed as soon as its journal is in place (a new
+  // file renamed over the old), before it has sent a line; the printer had
+  // kept running, then it resets.
+  const std::string second = "i0=$(" + inode + ")\n" + quote(tool_path("gc-send")) + " -q --port " +
+                             quote(dir + "/printer") + " --resume " + journal + " " + quote(reset_pieces()) +
+                             " 2>/dev/null & gs=$!\n" +
+                             gctest::wait_until("[ \"$(" + inode + ")\" != \"$i0\" ] || ! kill -0 $gs", 5000, 0.001) +
+                             "kill -9 $gs; wait $gs 2>/dev/null\ncp " + journal + " " + quote(dir + "/killed.journal") +
+                             "\nkill -USR1 $vp; sleep 0.3";
+  auto r = killed_then(dir, reset_pieces(), 1.5, second);
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  // It once held its header alone there: "holds no command".
+  gcode::serial::JournalContents killed = gcode::serial::read_journal(dir + "/killed.journal");
+  CHECK_FALSE(killed.entries.empty());
+  CHECK(killed.acknowledged > 0);
+  CHECK(r.err.find("resuming: the printer reset since the print stopped (it greeted again); going back to input "
+                   "line ") != std::string::npos);
+  // The second run's M400 had drained the printer: what ran before is not printed twice.
+  CHECK(r.err.find(", 0 moves (0.0 mm) may print twice") != std::string::npos);
+  CHECK(require_resumed(gctest::read_file(dir + "/executed.log"), expected).resets == 1);
 }
 
 namespace {

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "gcode/serial/input_identity.hpp"
 #include "gcode/serial/journal.hpp"
@@ -293,6 +294,39 @@ TEST_CASE("journal: a compaction keeps the points up to the acknowledged line, h
   }
   c = read_journal(path);
   CHECK(c.entries.front().n > 1100);
+}
+
+TEST_CASE("journal: a resume's new journal holds the commands it carries from the moment it replaces the old one",
+          "[serial][journal]") {
+  // gc-send --resume killed before it wrote anything of its own once left a
+  // journal of its header alone: the print could not be resumed again.
+  std::string path = gctest::temp_dir() + "/resumed.journal";
+  { JournalWriter old({path}, header()); }
+  std::vector<JournalEntry> carried;
+  for (int i = 0; i < 300; ++i) carried.push_back({static_cast<std::uint64_t>(i + 1), point(i)});
+  JournalOptions options{path};
+  options.keep = 64;
+  JournalWriter w(options, header(), carried);
+  // Nothing flushed: the file as a kill -9 would leave it now.
+  JournalContents c = read_journal(path);
+  REQUIRE(c.entries.size() == 64);  // the newest `keep`, as a compaction keeps them
+  CHECK(c.entries.front().n == 300 - 64 + 1);
+  for (const JournalEntry& e : c.entries) CHECK(e.point == point(static_cast<int>(e.n) - 1));
+  CHECK(c.acknowledged == 300);  // the line the print goes on after
+  CHECK_FALSE(c.finished);
+  CHECK_FALSE(c.torn_tail);
+  CHECK(w.file_bytes() == slurp(path).size());
+  // What follows is a delta on the carried point, and reads back after it.
+  JournalFields next = point(300);
+  w.sent(301, next);
+  w.acknowledged(301);
+  w.flush(0);
+  c = read_journal(path);
+  REQUIRE(c.entries.size() == 65);
+  CHECK(c.entries.back().n == 301);
+  CHECK(c.entries.back().point == point(300));
+  CHECK(c.acknowledged == 301);
+  CHECK(slurp(path).find("\nS ", 1) == slurp(path).rfind("\nS "));  // one full point: the rest are deltas
 }
 
 TEST_CASE("input identity: a file's size and time, any stream's prefix hash", "[serial][journal]") {

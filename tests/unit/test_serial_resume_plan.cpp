@@ -5,12 +5,14 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "gcode/core/line.hpp"
 #include "gcode/serial/journal_point.hpp"
 #include "gcode/serial/resume_plan.hpp"
+#include "gcode/serial/send_resume.hpp"
 #include "test_support.hpp"
 
 using namespace gcode;
@@ -139,6 +141,85 @@ TEST_CASE("resume plan: after a reset, a journal that lost the lines to go back 
   plan = plan_resume(r.journal, {PrinterCondition::Reset, -1, std::nullopt}, limits);
   CHECK_FALSE(plan.possible);
   CHECK(plan.refusal.find("no longer holds the lines before line 4991") != std::string::npos);
+}
+
+TEST_CASE("resume plan: after a reset, the walk back stops at a command after which nothing was pending",
+          "[serial][journal]") {
+  ResumeLimits limits;
+  limits.planner_blocks = 16;
+  // Moves between two entries: the plan redoes exactly those.
+  auto moves_between = [](const Print& p, std::size_t from, std::size_t to) {
+    int moves = 0;
+    for (std::size_t i = from; i < to; ++i) moves += p.states[i].exact != p.states[i + 1].exact ? 1 : 0;
+    return moves;
+  };
+  // An M400 answered a few moves before the acknowledged line: the
+  // planner held only what came after it.
+  Print p = print_of("prusa_cube_0.2_mk3s_rel_zhop.gcode", 5000);
+  mark_drained(p.journal.entries[4994].point);
+  ResumePlan plan = plan_resume(p.journal, {PrinterCondition::Reset, -1, std::nullopt}, limits);
+  REQUIRE(plan.possible);
+  CHECK(plan.entry == 4994);
+  CHECK(plan.redone_moves == moves_between(p, 4994, 4999));
+  CHECK(plan.redone_moves < 16);
+  // The acknowledged line itself drained: nothing is redone.
+  mark_drained(p.journal.entries[4999].point);
+  plan = plan_resume(p.journal, {PrinterCondition::Reset, -1, std::nullopt}, limits);
+  REQUIRE(plan.possible);
+  CHECK(plan.entry == 4999);
+  CHECK(plan.redone_moves == 0);
+  // A journal that starts at a drained line holds all a walk back needs.
+  Print q = print_of("prusa_cube_0.2_mk3s_rel_zhop.gcode", 5000);
+  q.journal.entries.erase(q.journal.entries.begin(), q.journal.entries.begin() + 4994);
+  mark_drained(q.journal.entries[0].point);
+  plan = plan_resume(q.journal, {PrinterCondition::Reset, -1, std::nullopt}, limits);
+  REQUIRE(plan.possible);
+  CHECK(plan.entry == 0);
+  CHECK(same_machine(plan.state, p.states[4994]));
+}
+
+TEST_CASE("resume plan: the journal of a resumed print, killed before it wrote a line of its own, resumes again",
+          "[serial][journal]") {
+  // gc-send --resume replaced the old journal and was killed at once (the
+  // soak test found it): the new journal must still say where the print is,
+  // and a printer that resets then must go back to where that resume went
+  // on, no further (its moves before had run: the resume's M400).
+  ResumeLimits limits;
+  limits.planner_blocks = 16;
+  Print p = print_of("prusa_cube_0.2_mk3s_rel_zhop.gcode", 3000);
+  for (PrinterCondition first : {PrinterCondition::KeptRunning, PrinterCondition::Reset}) {
+    INFO((first == PrinterCondition::Reset ? "the first resume after a reset" : "the first resume after a kill"));
+    ResumeSource old{p.journal, ""};
+    PrinterFindings found{first, first == PrinterCondition::Reset ? -1 : 3001,
+                          first == PrinterCondition::Reset ? std::nullopt : std::optional(at(p.states[2999]))};
+    ResumeStart start;
+    start.plan = plan_resume(old.journal, found, limits);
+    REQUIRE(start.plan.possible);
+    start.last = static_cast<long long>(p.journal.entries[start.plan.entry].n);
+    start.point = p.journal.entries[start.plan.entry].point;
+    std::vector<JournalEntry> carried = carried_entries(old, start);
+    REQUIRE(carried.back().n == static_cast<std::uint64_t>(start.last));
+    CHECK(carried.size() == start.plan.entry + 1);  // nothing after the line it goes on after
+
+    std::string path = gctest::temp_dir() + "/resumed.journal";
+    { JournalWriter w({path}, old.journal.header, carried); }  // killed before its first flush
+    JournalContents now = read_journal(path);
+    REQUIRE_FALSE(now.entries.empty());
+    CHECK(now.acknowledged == static_cast<std::uint64_t>(start.last));
+
+    // The printer kept running: on after that line.
+    ResumePlan kept = plan_resume(
+        now, {PrinterCondition::KeptRunning, start.last + 1, at(p.states[start.plan.entry])}, limits);
+    REQUIRE(kept.possible);
+    CHECK(same_machine(kept.state, p.states[start.plan.entry]));
+    // It reset: back to that line exactly, nothing redone.
+    ResumePlan reset = plan_resume(now, {PrinterCondition::Reset, -1, std::nullopt}, limits);
+    INFO(reset.refusal);
+    REQUIRE(reset.possible);
+    CHECK(same_machine(reset.state, p.states[start.plan.entry]));
+    CHECK(reset.redone_moves == 0);
+    CHECK(reset.input_line == std::stoull(start.point.get("line")));
+  }
 }
 
 TEST_CASE("resume plan: a finished or empty journal has nothing to resume", "[serial][journal]") {

@@ -95,24 +95,27 @@ std::string default_journal_path(std::string_view port) {
   return dir + "/" + port_file_name(port) + ".journal";
 }
 
-JournalWriter::JournalWriter(JournalOptions options, JournalFields header)
+JournalWriter::JournalWriter(JournalOptions options, JournalFields header, std::vector<JournalEntry> carried)
     : options_(std::move(options)), header_(std::move(header)) {
   header_.set("format", std::string(kFormat));
   make_private_folder(options_.path);
   check_folder(options_.path);
   check_existing(options_.path);
-  open_new();
+  if (!carried.empty()) acked_ = carried.back().n;
+  for (JournalEntry& e : carried) {
+    last_ = std::move(e.point);
+    kept_.emplace_back(e.n, last_);
+    trim_kept();
+  }
+  have_last_ = !carried.empty();
+  std::string text = snapshot();
+  fd_ = replace_with(options_.path, text);
+  file_bytes_ = text.size();
+  bytes_total_ += text.size();
 }
 
 JournalWriter::~JournalWriter() {
   if (fd_ >= 0) ::close(fd_);
-}
-
-void JournalWriter::open_new() {
-  std::string text = encode_journal_record({'H', header_});
-  fd_ = replace_with(options_.path, text);
-  file_bytes_ = text.size();
-  bytes_total_ += text.size();
 }
 
 void JournalWriter::sent(std::uint64_t n, const JournalFields& point) {
@@ -126,10 +129,14 @@ void JournalWriter::sent(std::uint64_t n, const JournalFields& point) {
     last_.update(point);
   }
   kept_.emplace_back(n, last_);
-  // The newest `keep`, and as many up to the acknowledged line: a resume
-  // after a reset walks back from that line over what the printer may have
-  // lost, however far the sender numbered ahead of it (a few, or a batch);
-  // kMaxKept bounds a printer that never answers.
+  trim_kept();
+}
+
+// The newest `keep`, and as many up to the acknowledged line: a resume
+// after a reset walks back from that line over what the printer may have
+// lost, however far the sender numbered ahead of it (a few, or a batch);
+// kMaxKept bounds a printer that never answers.
+void JournalWriter::trim_kept() {
   while (kept_.size() > options_.keep && (kept_[options_.keep].first <= acked_ || kept_.size() > kMaxKept))
     kept_.pop_front();
 }
@@ -166,7 +173,9 @@ void JournalWriter::sync(double now) {
   ++syncs_;
 }
 
-void JournalWriter::compact() {
+// The header, the kept points (a full one, then deltas) and the
+// acknowledged line: a whole journal as of now.
+std::string JournalWriter::snapshot() const {
   std::string text = encode_journal_record({'H', header_});
   bool first = true;
   const JournalFields* before = nullptr;
@@ -177,6 +186,11 @@ void JournalWriter::compact() {
     first = false;
   }
   if (acked_ > 0) text += encode_journal_record(ack_record(acked_));
+  return text;
+}
+
+void JournalWriter::compact() {
+  std::string text = snapshot();
   int fd = replace_with(options_.path, text);
   ::close(fd_);
   fd_ = fd;

@@ -185,12 +185,18 @@ bool read_machine_fields(const JournalFields& f, MachineState& s, std::string& p
 
 namespace gcode::serial {
 
-void write_track_fields(const ResumeTrack& track, long long restore, JournalFields& f) {
+void write_track_fields(const ResumeTrack& track, long long restore, bool drained, JournalFields& f) {
   f.set("top", double_text(track.top_z));
   f.set("retr", double_text(track.retracted));
   f.set("prime", double_text(track.retraction));
   f.set("restore", std::to_string(restore));
+  f.set("drained", drained ? "1" : "0");
 }
+
+void mark_drained(JournalFields& f) { f.set("drained", "1"); }
+
+// (A journal written before the field reads as never drained.)
+bool is_drained(const JournalFields& f) { return f.get("drained") == "1"; }
 
 ResumeTrack read_track_fields(const JournalFields& f, const MachineState& state) {
   ResumeTrack t;

@@ -114,6 +114,23 @@ ProbeResult probe_printer(int fd, double timeout, const std::function<void(std::
     r.problem = "the printer did not say which line it took last (no answer to a mis-numbered line)";
     return r;
   }
+  // Every move the printer took has run once M400 is answered: the line it
+  // took last then surely ran (a reset later goes back no further), and
+  // M114 says where the head stands, not where its queue ends. A busy line
+  // while it waits keeps the wait going.
+  x.send("M400\n");
+  bool drained = false;
+  while (!drained && x.read(timeout, 0, [&](std::string_view line) {
+    note(line);
+    Response resp = parse_response(line);
+    drained = resp.kind == ResponseKind::Ok;
+    return drained || resp.kind == ResponseKind::Busy;
+  })) {
+  }
+  if (!drained) {
+    r.problem = "the printer did not finish the moves it had taken (no answer to M400)";
+    return r;
+  }
   x.send("M114\n");
   std::optional<PositionReport> position;
   x.read(timeout, 0, [&](std::string_view line) {

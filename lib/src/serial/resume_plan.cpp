@@ -152,6 +152,7 @@ ResumePlan after_reset(const JournalContents& journal, const ResumeLimits& limit
   std::string problem;
   int moves = 0;
   double mm = 0, z_high = nozzle_height(after);
+  bool surely_ran = false;  // stopped at a command after which nothing before it was pending
   while (i > 0 && moves < limits.planner_blocks) {
     if (std::uint64_t back = journal.entries[i].point.count("restore"); back != 0) {
       // A line of an earlier resume after a reset: that resume starts again.
@@ -160,6 +161,11 @@ ResumePlan after_reset(const JournalContents& journal, const ResumeLimits& limit
         plan.refusal = fmt::format("the journal no longer holds line {}, where an earlier resume went back to", back);
         return plan;
       }
+      surely_ran = true;
+      break;
+    }
+    if (is_drained(journal.entries[i].point)) {
+      surely_ran = true;
       break;
     }
     if (journal.entries[i - 1].n + 1 != journal.entries[i].n) return lost_before(journal.entries[i].n, plan);
@@ -174,7 +180,9 @@ ResumePlan after_reset(const JournalContents& journal, const ResumeLimits& limit
   }
   // Short of the planner's moves at the journal's oldest line: the lines
   // before it, which the printer may have lost, are no longer held.
-  if (i == 0 && moves < limits.planner_blocks && journal.entries[0].n > 1) return lost_before(journal.entries[0].n, plan);
+  if (i == 0 && !surely_ran && !is_drained(journal.entries[0].point) && moves < limits.planner_blocks &&
+      journal.entries[0].n > 1)
+    return lost_before(journal.entries[0].n, plan);
   if (!take_entry(journal, i, plan)) return plan;
   plan.track = read_track_fields(journal.entries[i].point, plan.state);
   if (plan.track.top_z <= 0) {

@@ -287,8 +287,12 @@ SenderConfig sender_config(const SendJob& job, const PortSetup& port, bool resum
   return config;
 }
 
-std::unique_ptr<SendJournal> open_journal(const SendJob& job, const InputIdentity& input) {
-  return std::make_unique<SendJournal>(JournalOptions{.path = job.journal_path}, input, job.port);
+// A resume's journal carries the old one's commands up to where the print
+// goes on (`carried`, send_resume.hpp).
+std::unique_ptr<SendJournal> open_journal(const SendJob& job, const InputIdentity& input,
+                                          std::vector<JournalEntry> carried = {}) {
+  return std::make_unique<SendJournal>(JournalOptions{.path = job.journal_path}, input, job.port,
+                                       std::move(carried));
 }
 
 // The sender goes on where the resume plan says: the next line exactly, or
@@ -331,10 +335,9 @@ void go_on(Sender& sender, const ResumeStart& start, bool quiet, Diagnostics& di
 // gc-send was stopped after the printer took its closing M400, or while
 // the print was cancelled: nothing is sent, and the journal says the print
 // ended (a resume of it is then refused as finished).
-SendOutcome already_complete(const SendJob& job, const ResumeStart& start, const InputIdentity& input,
-                             Diagnostics& diag) {
-  std::unique_ptr<SendJournal> journal = open_journal(job, input);
-  journal->continue_after(start.last, start.point);
+SendOutcome already_complete(const SendJob& job, const ResumeSource& source, const ResumeStart& start,
+                             const InputIdentity& input, Diagnostics& diag) {
+  std::unique_ptr<SendJournal> journal = open_journal(job, input, carried_entries(source, start));
   journal->finish(EventLoop::now());
   if (!job.quiet)
     diag.report(fmt::format("{}; nothing sent, the journal {} is marked finished", start.complete, job.journal_path));
@@ -446,9 +449,9 @@ SendOutcome send(SendJob& job, Diagnostics& diag) {
   std::optional<ResumeStart> start;
   if (resume) {
     start = begin_resume(*resume, *probe, session, ResumeLimits{.can_home_xy_alone = config.home_xy_alone});
-    if (!start->complete.empty()) return already_complete(job, *start, identify_input(name, input.fd()), diag);
-    journal = open_journal(job, identify_input(name, input.fd()));
-    journal->continue_after(start->last, start->point);
+    if (!start->complete.empty())
+      return already_complete(job, *resume, *start, identify_input(name, input.fd()), diag);
+    journal = open_journal(job, identify_input(name, input.fd()), carried_entries(*resume, *start));
     session.set_journal(journal.get());
     go_on(sender, *start, job.quiet, diag);
   } else if (journal) {

@@ -17,22 +17,21 @@ constexpr std::size_t kEndsKept = 8192;
 
 }  // namespace
 
-SendJournal::SendJournal(JournalOptions options, const InputIdentity& input, std::string_view port)
-    : writer_(options, journal_header(input, port)), options_sync_(options.sync_interval) {
+SendJournal::SendJournal(JournalOptions options, const InputIdentity& input, std::string_view port,
+                         std::vector<JournalEntry> carried)
+    : writer_(options, journal_header(input, port), carried), options_sync_(options.sync_interval) {
   checkpoint_ = hash_text(PrefixHash().digest());
+  if (carried.empty()) return;
+  // Go on from the point of the command that ran last, already written.
+  point_ = carried.back().point;
+  last_line_ = point_.count("line");
+  last_off_ = point_.count("off");
+  acked_ = acked_written_ = static_cast<long long>(carried.back().n);
 }
 
 void SendJournal::checkpoint(std::uint64_t bytes, std::uint64_t hash) {
   checkpoint_at_ = bytes;
   checkpoint_ = hash_text(hash);
-}
-
-void SendJournal::continue_after(long long n, const JournalFields& point) {
-  point_ = point;
-  last_line_ = std::stoull(point.get("line", "0"));
-  last_off_ = std::stoull(point.get("off", "0"));
-  writer_.sent(static_cast<std::uint64_t>(n), point_);
-  acked_ = n;
 }
 
 void SendJournal::line_end(std::uint64_t line, std::uint64_t end) {
@@ -50,20 +49,19 @@ std::uint64_t SendJournal::offset_of(std::uint64_t line) const {
   return last_off_;
 }
 
-void SendJournal::numbered(long long n, std::uint64_t source_line, int layer, const MachineState& after,
-                           const ResumeTrack& track, long long restore, bool closing) {
+void SendJournal::numbered(const NumberedCommand& c) {
   // Commands of the control's own (a pause block, a cancel's end) carry no
   // input line: they keep the position in the input of the line before.
-  if (source_line != 0) {
-    last_off_ = offset_of(source_line);
-    last_line_ = source_line;
+  if (c.source_line != 0) {
+    last_off_ = offset_of(c.source_line);
+    last_line_ = c.source_line;
   }
   point_.set("line", std::to_string(last_line_));
   point_.set("off", std::to_string(last_off_));
-  point_.set("layer", std::to_string(layer));
-  point_.set("own", source_line == 0 ? "1" : "0");
-  point_.set("end", closing ? "1" : "0");
-  write_machine_fields(after, point_);
+  point_.set("layer", std::to_string(c.layer));
+  point_.set("own", c.source_line == 0 ? "1" : "0");
+  point_.set("end", c.closing ? "1" : "0");
+  write_machine_fields(*c.after, point_);
   point_.set("hash", checkpoint_);
   point_.set("hoff", std::to_string(checkpoint_at_));
   point_.set("speed", fmt::format("{:g}", live_.speed));
@@ -71,8 +69,8 @@ void SendJournal::numbered(long long n, std::uint64_t source_line, int layer, co
   point_.set("paused", live_.paused ? "1" : "0");
   point_.set("swap", live_.swap);
   point_.set("swapline", std::to_string(live_.swap_line));
-  write_track_fields(track, restore, point_);
-  writer_.sent(static_cast<std::uint64_t>(n), point_);
+  write_track_fields(*c.track, c.restore, c.drains, point_);
+  writer_.sent(static_cast<std::uint64_t>(c.n), point_);
 }
 
 void SendJournal::flush(double now) {

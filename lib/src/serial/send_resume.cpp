@@ -178,6 +178,18 @@ ResumeStart begin_resume(const ResumeSource& source, const ProbeResult& probe, S
   return r;
 }
 
+std::vector<JournalEntry> carried_entries(const ResumeSource& source, const ResumeStart& start) {
+  std::vector<JournalEntry> carried;
+  for (const JournalEntry& e : source.journal.entries)
+    if (e.n < static_cast<std::uint64_t>(start.last)) carried.push_back(e);
+  carried.push_back(JournalEntry{static_cast<std::uint64_t>(start.last), start.point});
+  // Every command up to it ran: the printer had drained its queue when it
+  // was asked where it is, or it reset and the resume goes back to this one.
+  // A reset later walks back no further.
+  mark_drained(carried.back().point);
+  return carried;
+}
+
 std::string resume_command(const std::string& journal, const std::string& input, const std::string& port) {
   std::string command = fmt::format("gc-send --resume {} {} --port {}", shell_word(journal),
                                     input == "-" ? std::string("-") : shell_word(input), shell_word(port));

@@ -149,7 +149,7 @@ void SendSession::set_journal(SendJournal* journal) {
         // A pause block is numbered inside the control's call: its lines
         // carry the pause state it set.
         note_live_control();
-        journal_->numbered(c.n, c.source_line, c.layer, *c.after, *c.track, c.restore, c.closing);
+        journal_->numbered(c);
       },
       [this](long long n) { journal_->acknowledged(n); });
   // At least once a second, whether or not anything else happens.

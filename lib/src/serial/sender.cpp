@@ -151,7 +151,7 @@ void Sender::enqueue(std::string_view command, std::uint64_t source_line, int la
   Move move = machine_.apply(line);
   s.at = {machine_.position[kX], machine_.position[kY], machine_.position[kZ]};
   track(s, line, move);
-  if (on_numbered_) on_numbered_({next_number_, source_line, layer, &machine_, &track_, restoring_, closing});
+  if (on_numbered_) on_numbered_({next_number_, source_line, layer, &machine_, &track_, restoring_, closing, s.drains});
   // Until the estimator's time is final (16 moves later), length / feed rate.
   s.motion = 0;
   s.motion_final = false;

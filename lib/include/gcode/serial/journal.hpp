@@ -55,12 +55,22 @@ struct JournalOptions {
 // The default path: <state folder>/<port name>.journal.
 std::string default_journal_path(std::string_view port);
 
+struct JournalEntry {
+  std::uint64_t n = 0;   // the protocol line number it went out as
+  JournalFields point;   // every field after it
+};
+
 class JournalWriter {
  public:
   // Creates (0600) or replaces the journal; throws JournalError when its
   // folder can be changed by others, the path is not a regular file of this
   // user, or it cannot be written.
-  JournalWriter(JournalOptions options, JournalFields header);
+  // `carried`: a resume's commands from the journal it goes on from, oldest
+  // first, the last of them the one that ran last (taken as acknowledged).
+  // The new file holds them from the moment it replaces the old one: a kill
+  // before anything more is written still leaves the print resumable, and a
+  // later reset can walk back over the moves the printer held then.
+  JournalWriter(JournalOptions options, JournalFields header, std::vector<JournalEntry> carried = {});
   ~JournalWriter();
   JournalWriter(const JournalWriter&) = delete;
   JournalWriter& operator=(const JournalWriter&) = delete;
@@ -84,7 +94,8 @@ class JournalWriter {
   int syncs() const { return syncs_; }
 
  private:
-  void open_new();
+  void trim_kept();
+  std::string snapshot() const;
   void write_out(const std::string& text);
   void compact();
   void sync(double now);
@@ -106,11 +117,6 @@ class JournalWriter {
   std::uint64_t bytes_total_ = 0;
   int compactions_ = 0;
   int syncs_ = 0;
-};
-
-struct JournalEntry {
-  std::uint64_t n = 0;   // the protocol line number it went out as
-  JournalFields point;   // every field after it
 };
 
 struct JournalContents {

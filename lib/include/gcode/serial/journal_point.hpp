@@ -18,6 +18,8 @@
 // And for a resume after a reset (reset_sequence.hpp's ResumeTrack):
 //   top retr prime   the highest Z extruded at, mm retracted, the longest retraction
 //   restore          a line of such a resume: the n of the command it goes back to (0: none)
+//   drained          1: once answered, every command up to it had run (an M400, G28, G29, G4,
+//                    or where a resumed print went on: the printer had drained or reset by then)
 #include <string>
 
 #include "gcode/core/machine_state.hpp"
@@ -32,7 +34,10 @@ void write_machine_fields(const MachineState& state, JournalFields& fields);
 // one is missing or does not read as its kind.
 bool read_machine_fields(const JournalFields& fields, MachineState& state, std::string& problem);
 
-void write_track_fields(const ResumeTrack& track, long long restore, JournalFields& fields);
+void write_track_fields(const ResumeTrack& track, long long restore, bool drained, JournalFields& fields);
+// The field `drained` set: a walk back after a reset stops at this command.
+void mark_drained(JournalFields& fields);
+bool is_drained(const JournalFields& fields);
 // A journal written before these fields reads as nothing extruded higher
 // than the state's own Z, nothing retracted, no resume line.
 ResumeTrack read_track_fields(const JournalFields& fields, const MachineState& state);

@@ -3,8 +3,9 @@
 // printer what it did with the lines it took (resume_plan.hpp): the line it
 // expects next, from its answer to a line sent with a deliberately wrong
 // number ("Error:Line Number is not Last Line Number+1, Last Line: 1234"),
-// where it stands (M114), and whether it greeted (reset) meanwhile. Neither
-// question moves the printer: a refused line is not run, M105 and M114 only
+// where it stands once the moves it took have run (M400, then M114), and
+// whether it greeted (reset) meanwhile. None of it moves the printer: a
+// refused line is not run, M400 waits for what it took, M105 and M114 only
 // report. A blocking exchange on the port before the event loop starts.
 #include <functional>
 #include <stdexcept>

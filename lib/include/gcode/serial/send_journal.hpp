@@ -11,10 +11,12 @@
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 #include "gcode/core/machine_state.hpp"
 #include "gcode/serial/input_identity.hpp"
 #include "gcode/serial/journal.hpp"
+#include "gcode/serial/numbered_command.hpp"
 #include "gcode/serial/reset_sequence.hpp"
 
 namespace gcode::serial {
@@ -31,25 +33,24 @@ struct LiveControl {
 
 class SendJournal {
  public:
-  SendJournal(JournalOptions options, const InputIdentity& input, std::string_view port);
+  // `carried`: a resume's commands from the old journal, up to the one that
+  // ran last, whose point the journal goes on from (JournalWriter).
+  SendJournal(JournalOptions options, const InputIdentity& input, std::string_view port,
+              std::vector<JournalEntry> carried = {});
 
   // The hash of the input's first `bytes` (a checkpoint; the session hashes
   // what it feeds): the records from now on carry it.
   void checkpoint(std::uint64_t bytes, std::uint64_t hash);
-  // A resume: the journal goes on from the command that ran last (`n`,
-  // with its point as the old journal held it).
-  void continue_after(long long n, const JournalFields& point);
   // Input line `line` ends at byte `end` (called as it reaches the control).
   void line_end(std::uint64_t line, std::uint64_t end);
   void layer_began();
   void live(const LiveControl& live) { live_ = live; }
 
-  // The sender's hooks.
-  // `track` and `restore`: what a resume after a reset needs (the fields
-  // top, retr, prime and restore; sender.hpp's Numbered); `closing`: the
-  // closing M400 (field end), after which nothing of the input is left.
-  void numbered(long long n, std::uint64_t source_line, int layer, const MachineState& after, const ResumeTrack& track,
-                long long restore, bool closing);
+  // The sender's hooks. A command's track and restore are what a resume
+  // after a reset needs (the fields top, retr, prime, restore and drained);
+  // `closing` marks the closing M400 (field end), after which nothing of
+  // the input is left.
+  void numbered(const NumberedCommand& command);
   void acknowledged(long long n) { acked_ = n; }
 
   void flush(double now);

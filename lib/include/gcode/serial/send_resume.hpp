@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "gcode/serial/journal.hpp"
 #include "gcode/serial/printer_probe.hpp"
@@ -70,6 +71,13 @@ struct ResumeStart {
 // nothing skipped (a cancel the printer took only part of is refused).
 ResumeStart begin_resume(const ResumeSource& source, const ProbeResult& probe, SendSession& session,
                          const ResumeLimits& limits);
+
+// What the new journal carries over from the old one: its commands up to
+// the one the print goes on after (`start.last`, whose point ends them).
+// Written whole before the old file goes, they keep the print resumable
+// from the first moment, also after a printer reset that lost moves sent
+// before the resume.
+std::vector<JournalEntry> carried_entries(const ResumeSource& source, const ResumeStart& start);
 
 // The one command that resumes a print that stopped with the part on the bed.
 std::string resume_command(const std::string& journal, const std::string& input, const std::string& port);

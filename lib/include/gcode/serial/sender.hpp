@@ -26,6 +26,7 @@
 #include "gcode/serial/flow_control.hpp"
 #include "gcode/serial/in_flight.hpp"
 #include "gcode/serial/line_check.hpp"
+#include "gcode/serial/numbered_command.hpp"
 #include "gcode/serial/pacer.hpp"
 #include "gcode/serial/probe_backoff.hpp"
 #include "gcode/serial/protocol.hpp"
@@ -167,15 +168,7 @@ class Sender : private TimeSink {
   // The journal's hooks (send_journal.hpp): a command got its number, with
   // the machine state after it (called before its bytes can go out); the
   // printer acknowledged a numbered line.
-  struct Numbered {
-    long long n = 0;
-    std::uint64_t source_line = 0;  // 0: a line of gc-send's own
-    int layer = 0;
-    const MachineState* after = nullptr;
-    const ResumeTrack* track = nullptr;  // the print up to it, for a resume after a reset
-    long long restore = 0;  // a line of such a resume: the command it goes back to (else 0)
-    bool closing = false;   // the closing M400, numbered once every input line was
-  };
+  using Numbered = NumberedCommand;
   using NumberedHook = std::function<void(const Numbered&)>;
   using AcknowledgedHook = std::function<void(long long n)>;
   void set_journal_hooks(NumberedHook numbered, AcknowledgedHook acknowledged) {
