@@ -89,6 +89,32 @@ TEST_CASE("gc-send --resume after kill -9: every command of the file once, in or
   require_every_command_once(dir, input);
 }
 
+TEST_CASE("gc-send --resume of a print killed before its first command begins it: every command once",
+          "[gc-send][resume]") {
+  // A supervisor resumes whatever was killed, also in gc-send's first
+  // second: the printer was stopped (SIGSTOP), so gc-send waited for its
+  // answer to M110 with no command journaled when the kill came.
+  std::string dir = gctest::temp_dir();
+  std::string input = subdivided_part(dir);
+  std::string port = dir + "/printer";
+  std::string journal = dir + "/print.journal";
+  std::string script = printer_up(dir) + "kill -STOP $vp\n" +
+                       gc_send("-q --port " + quote(port) + " --journal " + quote(journal) + " " + quote(input)) +
+                       " 2>/dev/null & gs=$!\n" +
+                       gctest::wait_until("grep -q '^H ' " + quote(journal) + " 2>/dev/null", 5000, 0.002) +
+                       "sleep 0.3; kill -9 $gs; wait $gs 2>/dev/null; kill -CONT $vp\n" +
+                       "grep -c '^[SD] ' " + quote(journal) + " >&2\n" +
+                       gc_send("--port " + quote(port) + " --resume " + quote(journal)) +
+                       "; s=$?; kill $vp; wait $vp; exit $s";
+  auto r = run(script);
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.err.rfind("0\n", 0) == 0);  // the killed run had journaled no command
+  CHECK(r.err.find("holds no command: the print had not begun; beginning it") != std::string::npos);
+  CHECK(gcode::serial::read_journal(journal).finished);
+  require_every_command_once(dir, input);
+}
+
 TEST_CASE("gc-send --resume with the default journal and the journal's file, and a pipeline re-run",
           "[gc-send][resume]") {
   std::string dir = gctest::temp_dir();

@@ -427,6 +427,14 @@ SendOutcome send(SendJob& job, Diagnostics& diag) {
   InputFile input(file);
   const std::string name = input_name(file);
   if (resume) check_resume_input(*resume, name, input.fd());
+  if (resume && resume->not_begun()) {
+    // (gc-send was stopped before its first command: a supervisor's
+    // --resume after a kill in the first second needs no other case.)
+    if (!job.quiet)
+      diag.report(fmt::format("the journal {} holds no command: the print had not begun; beginning it",
+                              job.journal_path));
+    resume.reset();
+  }
   EventLoop loop;
   // The journal before the port: one that cannot be kept stops the print
   // before anything reaches the printer. A resume's replaces the old one

@@ -123,9 +123,6 @@ ResumeSource open_resume(const std::string& journal_path, const std::string& fil
   }
   if (s.journal.finished)
     throw ResumeError(fmt::format("cannot resume: the print of {} ended normally (nothing to resume)", journal_path));
-  if (s.journal.entries.empty())
-    throw ResumeError(fmt::format("cannot resume: {} holds no command (the print had not begun: start it again)",
-                                  journal_path));
   s.resolved = file;
   if (s.resolved.empty()) s.resolved = s.journal.header.get("regular") == "1" ? s.journal.header.get("input") : "-";
   return s;

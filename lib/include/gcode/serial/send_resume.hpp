@@ -28,12 +28,15 @@ class ResumeError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// The old journal, read back and checked: not finished, with commands in it.
+// The old journal, read back and checked: not finished.
 // `file`: the input as given ("" = the journal's own file, or standard
 // input for a journal of a stream), resolved into `resolved`.
 struct ResumeSource {
   JournalContents journal;
   std::string resolved;
+  // No command in it: none reached the printer (each is written before its
+  // bytes go out), so the print begins from its first line.
+  bool not_begun() const { return journal.entries.empty(); }
 };
 ResumeSource open_resume(const std::string& journal_path, const std::string& file);
 // The input opened as `fd` (named `name`, absolute) is the journal's input.
