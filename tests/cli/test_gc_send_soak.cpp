@@ -45,7 +45,10 @@ std::string scheduled_faults(std::size_t commands, std::mt19937& rng) {
 }
 
 // The supervisor: gc-send with a journal, killed with SIGKILL `kills` times
-// at `kill_after` seconds into a session; whenever it stops with status 1
+// at `kill_after` seconds into a session (counted from the journal's first
+// acknowledgement: a loaded machine can take a second to start gc-send, and
+// a print killed before its first command only begins again, which a
+// resume test of its own covers); whenever it stops with status 1
 // and prints the command that resumes the print, that command runs next.
 std::string supervisor(const std::string& dir, const std::string& input, const std::string& faults, int kills,
                        double kill_after) {
@@ -60,7 +63,8 @@ std::string supervisor(const std::string& dir, const std::string& input, const s
          // exec: $gs is gc-send itself, not a subshell around it.
          "  eval \"exec $cmd\" 2>" + quote(err) + ".$session & gs=$!\n"
          "  if [ $kills -gt 0 ]; then\n"
-         "    (sleep " + std::to_string(kill_after) + "; kill -9 $gs 2>/dev/null) & killer=$!\n"
+         "    (" + gctest::wait_until("grep -q '^A ' " + quote(journal) + " 2>/dev/null", 5000, 0.002) + "sleep " +
+         std::to_string(kill_after) + "; kill -9 $gs 2>/dev/null) & killer=$!\n"
          "  fi\n"
          "  wait $gs; s=$?\n"
          "  [ $kills -gt 0 ] && { kill $killer 2>/dev/null; wait $killer 2>/dev/null; }\n"
