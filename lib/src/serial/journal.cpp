@@ -103,11 +103,11 @@ JournalWriter::JournalWriter(JournalOptions options, JournalFields header, std::
   check_existing(options_.path);
   if (!carried.empty()) acked_ = carried.back().n;
   for (JournalEntry& e : carried) {
+    JournalFields changes = have_last_ ? e.point.changed_since(last_) : JournalFields();
     last_ = std::move(e.point);
-    kept_.emplace_back(e.n, last_);
-    trim_kept();
+    have_last_ = true;
+    keep(e.n, std::move(changes));
   }
-  have_last_ = !carried.empty();
   std::string text = snapshot();
   fd_ = replace_with(options_.path, text);
   file_bytes_ = text.size();
@@ -124,21 +124,36 @@ void JournalWriter::sent(std::uint64_t n, const JournalFields& point) {
     last_ = point;
     buffer_ += encode_journal_record(point_record('S', n, point));
     have_last_ = true;
-  } else {
-    buffer_ += encode_journal_record(point_record('D', n, point.changed_since(last_)));
-    last_.update(point);
+    keep(n, point);
+    return;
   }
-  kept_.emplace_back(n, last_);
+  JournalFields changes = point.changed_since(last_);
+  buffer_ += encode_journal_record(point_record('D', n, changes));
+  last_.update(changes);
+  keep(n, std::move(changes));
+}
+
+// Point n, as its changes since the one kept before it.
+void JournalWriter::keep(std::uint64_t n, JournalFields changes) {
+  // (With nothing kept before it, the changes since nothing are all of it.)
+  kept_.emplace_back(n, kept_.empty() ? last_ : std::move(changes));
   trim_kept();
 }
 
 // The newest `keep`, and as many up to the acknowledged line: a resume
 // after a reset walks back from that line over what the printer may have
 // lost, however far the sender numbered ahead of it (a few, or a batch);
-// kMaxKept bounds a printer that never answers.
+// kMaxKept bounds a printer that never answers. The second oldest becomes
+// the full point.
 void JournalWriter::trim_kept() {
-  while (kept_.size() > options_.keep && (kept_[options_.keep].first <= acked_ || kept_.size() > kMaxKept))
+  while (kept_.size() > options_.keep && (kept_[options_.keep].first <= acked_ || kept_.size() > kMaxKept)) {
+    if (kept_.size() > 1) {
+      JournalFields full = std::move(kept_[0].second);
+      full.update(kept_[1].second);
+      kept_[1].second = std::move(full);
+    }
     kept_.pop_front();
+  }
 }
 
 void JournalWriter::acknowledged(std::uint64_t n) {
@@ -178,11 +193,8 @@ void JournalWriter::sync(double now) {
 std::string JournalWriter::snapshot() const {
   std::string text = encode_journal_record({'H', header_});
   bool first = true;
-  const JournalFields* before = nullptr;
-  for (const auto& [n, point] : kept_) {
-    text += first ? encode_journal_record(point_record('S', n, point))
-                  : encode_journal_record(point_record('D', n, point.changed_since(*before)));
-    before = &point;
+  for (const auto& [n, fields] : kept_) {
+    text += encode_journal_record(point_record(first ? 'S' : 'D', n, fields));
     first = false;
   }
   if (acked_ > 0) text += encode_journal_record(ack_record(acked_));

@@ -58,20 +58,28 @@ std::uint32_t check_of(std::string_view payload) {
 
 }  // namespace
 
+// The index of `key` (items_.size() when it is missing), looked for from
+// `hint` on first: the keys of a point, or of a delta, come in the order
+// of the full point's.
+std::size_t JournalFields::index_of(std::string_view key, std::size_t hint) const {
+  const std::size_t size = items_.size();
+  for (std::size_t i = std::min(hint, size); i < size; ++i)
+    if (items_[i].first == key) return i;
+  for (std::size_t i = 0; i < std::min(hint, size); ++i)
+    if (items_[i].first == key) return i;
+  return size;
+}
+
 void JournalFields::set(std::string_view key, std::string value) {
-  for (auto& [k, v] : items_) {
-    if (k == key) {
-      v = std::move(value);
-      return;
-    }
-  }
-  items_.emplace_back(std::string(key), std::move(value));
+  std::size_t i = index_of(key, next_);
+  if (i == items_.size()) items_.emplace_back(std::string(key), std::move(value));
+  else items_[i].second = std::move(value);
+  next_ = i + 1;
 }
 
 const std::string* JournalFields::find(std::string_view key) const {
-  for (const auto& [k, v] : items_)
-    if (k == key) return &v;
-  return nullptr;
+  std::size_t i = index_of(key, 0);
+  return i < items_.size() ? &items_[i].second : nullptr;
 }
 
 std::uint64_t JournalFields::count(std::string_view key) const {
@@ -91,6 +99,7 @@ bool JournalFields::erase(std::string_view key) {
   auto it = std::find_if(items_.begin(), items_.end(), [&](const auto& kv) { return kv.first == key; });
   if (it == items_.end()) return false;
   items_.erase(it);
+  next_ = 0;
   return true;
 }
 
@@ -100,9 +109,12 @@ void JournalFields::update(const JournalFields& other) {
 
 JournalFields JournalFields::changed_since(const JournalFields& before) const {
   JournalFields out;
-  for (const auto& [k, v] : items_) {
-    const std::string* old = before.find(k);
-    if (old == nullptr || *old != v) out.items_.emplace_back(k, v);
+  // Points of one journal hold their keys in the same order: field i of
+  // one is field i of the other, but where a key first appeared later.
+  for (std::size_t i = 0; i < items_.size(); ++i) {
+    const auto& [k, v] = items_[i];
+    std::size_t j = before.index_of(k, i);
+    if (j == before.items_.size() || before.items_[j].second != v) out.items_.emplace_back(k, v);
   }
   return out;
 }

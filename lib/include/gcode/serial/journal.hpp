@@ -94,6 +94,7 @@ class JournalWriter {
   int syncs() const { return syncs_; }
 
  private:
+  void keep(std::uint64_t n, JournalFields changes);
   void trim_kept();
   std::string snapshot() const;
   void write_out(const std::string& text);
@@ -106,7 +107,10 @@ class JournalWriter {
   std::string buffer_;
   JournalFields last_;              // the full point of the newest command
   bool have_last_ = false;
-  std::deque<std::pair<std::uint64_t, JournalFields>> kept_;  // full points, newest last
+  // What a compaction keeps, newest last: the oldest as a full point, each
+  // after it as its changes since the one before (a copy of every field
+  // per command cost more than the rest of the journal).
+  std::deque<std::pair<std::uint64_t, JournalFields>> kept_;
   std::uint64_t acked_ = 0;
   bool unsynced_ = false;
   static constexpr std::size_t kMaxKept = 1 << 14;  // points kept at most, acknowledged or not

@@ -19,6 +19,8 @@ namespace gcode::serial {
 
 // A small ordered set of fields: records have a dozen or so, so a vector
 // beats a map, and the order of first appearance is the order written.
+// A point is set field by field in the same order command after command:
+// each lookup tries the place after the last one first.
 class JournalFields {
  public:
   void set(std::string_view key, std::string value);
@@ -35,10 +37,13 @@ class JournalFields {
 
   const std::vector<std::pair<std::string, std::string>>& items() const { return items_; }
   bool empty() const { return items_.empty(); }
-  friend bool operator==(const JournalFields&, const JournalFields&) = default;
+  friend bool operator==(const JournalFields& a, const JournalFields& b) { return a.items_ == b.items_; }
 
  private:
+  std::size_t index_of(std::string_view key, std::size_t hint) const;
+
   std::vector<std::pair<std::string, std::string>> items_;
+  std::size_t next_ = 0;  // where the next set() looks first
 };
 
 struct JournalRecord {
