@@ -38,6 +38,11 @@ TEST_CASE("journal point: every state of every fixture reads back as the same ma
     std::string text = gctest::read_file(gctest::fixture_path(name));
     MachineState state = gctest::initial_state(text);
     std::size_t checked = 0;
+    // Written command after command as the journal writes them (the
+    // settings only where they changed): the same fields as written whole.
+    JournalFields running;
+    MachineState before = state;
+    write_machine_fields(state, running);
     for (const std::string& raw : gctest::split_lines(text)) {
       state.apply(parsed(raw));
       JournalFields f;
@@ -45,6 +50,12 @@ TEST_CASE("journal point: every state of every fixture reads back as the same ma
       MachineState back = read_back(f);
       if (!same_machine(back, state) || back.filament_total != state.filament_total) {
         FAIL_CHECK("differs after: " << raw);
+        break;
+      }
+      write_machine_fields(state, running, &before);
+      before = state;
+      if (running != f) {
+        FAIL_CHECK("written after the state before, differs after: " << raw);
         break;
       }
       ++checked;

@@ -114,7 +114,29 @@ class FieldReader {
 
 }  // namespace
 
-void write_machine_fields(const MachineState& s, JournalFields& f) {
+namespace {
+
+// What write_machine_fields writes besides the motion fields (x y z e, f,
+// fil): a field added there belongs here too.
+bool same_settings(const MachineState& a, const MachineState& b) {
+  return a.offset == b.offset && a.known == b.known && a.relative_xyz == b.relative_xyz &&
+         a.relative_e == b.relative_e && a.inches == b.inches && a.e_mode_set == b.e_mode_set &&
+         a.e_follows_g90 == b.e_follows_g90 && a.firmware_retracted == b.firmware_retracted &&
+         a.uses_firmware_retraction == b.uses_firmware_retraction && a.tool == b.tool &&
+         a.hotend_target == b.hotend_target && a.bed_target == b.bed_target && a.fan == b.fan &&
+         a.speed_factor == b.speed_factor && a.speed_factor_backup == b.speed_factor_backup &&
+         a.flow_factor == b.flow_factor && a.lifted == b.lifted && a.lift_base_z == b.lift_base_z;
+}
+
+}  // namespace
+
+void write_machine_fields(const MachineState& s, JournalFields& f, const MachineState* before) {
+  if (before != nullptr && same_settings(*before, s)) {
+    for (int a = 0; a < 4; ++a) f.set(kAxisKeys[a], fixed_text(s.at(a)));
+    f.set("f", double_text(s.feedrate));
+    f.set("fil", double_text(s.filament_total));
+    return;
+  }
   for (int a = 0; a < 4; ++a) {
     f.set(kAxisKeys[a], fixed_text(s.at(a)));
     f.set(kOffsetKeys[a], fixed_text(s.offset[static_cast<std::size_t>(a)]));

@@ -70,10 +70,10 @@ std::size_t JournalFields::index_of(std::string_view key, std::size_t hint) cons
   return size;
 }
 
-void JournalFields::set(std::string_view key, std::string value) {
+void JournalFields::set(std::string_view key, std::string_view value) {
   std::size_t i = index_of(key, next_);
-  if (i == items_.size()) items_.emplace_back(std::string(key), std::move(value));
-  else items_[i].second = std::move(value);
+  if (i == items_.size()) items_.emplace_back(std::string(key), std::string(value));
+  else items_[i].second.assign(value);
   next_ = i + 1;
 }
 

@@ -61,7 +61,9 @@ void SendJournal::numbered(const NumberedCommand& c) {
   point_.set("layer", std::to_string(c.layer));
   point_.set("own", c.source_line == 0 ? "1" : "0");
   point_.set("end", c.closing ? "1" : "0");
-  write_machine_fields(*c.after, point_);
+  write_machine_fields(*c.after, point_, have_written_ ? &written_ : nullptr);
+  written_ = *c.after;
+  have_written_ = true;
   point_.set("hash", checkpoint_);
   point_.set("hoff", std::to_string(checkpoint_at_));
   point_.set("speed", fmt::format("{:g}", live_.speed));

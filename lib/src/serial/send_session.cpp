@@ -443,6 +443,9 @@ void SendSession::read_port() {
     }
     port_in_.erase(0, pos);
     if (port_in_.size() > 4096) port_in_.clear();  // no newline in 4 KB: line noise
+    // A short read took all there was: the next poll() says when more
+    // comes (one read a turn, not a second that finds nothing).
+    if (static_cast<std::size_t>(n) < sizeof buf) break;
   }
 }
 

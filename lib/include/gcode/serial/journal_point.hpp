@@ -28,7 +28,11 @@
 
 namespace gcode::serial {
 
-void write_machine_fields(const MachineState& state, JournalFields& fields);
+// `before`: the state `fields` holds already (the command before's): where
+// the settings (offsets, known axes, modes, tool, heaters, fan, factors, a
+// z-hop) are the same, only X Y Z E, the feed rate and the filament are
+// written again.
+void write_machine_fields(const MachineState& state, JournalFields& fields, const MachineState* before = nullptr);
 
 // Fills `state` from `fields`; false (with `problem` naming the field) when
 // one is missing or does not read as its kind.

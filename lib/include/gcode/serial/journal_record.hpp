@@ -23,7 +23,9 @@ namespace gcode::serial {
 // each lookup tries the place after the last one first.
 class JournalFields {
  public:
-  void set(std::string_view key, std::string value);
+  // (A value copied into the field's own string: no allocation once it
+  // has held one as long.)
+  void set(std::string_view key, std::string_view value);
   const std::string* find(std::string_view key) const;
   std::string get(std::string_view key, std::string_view otherwise = {}) const;
   // A field that holds a whole number >= 0; 0 when it is missing or not one

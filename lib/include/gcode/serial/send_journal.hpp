@@ -71,6 +71,8 @@ class SendJournal {
   std::uint64_t last_off_ = 0;
   LiveControl live_;
   JournalFields point_;
+  MachineState written_;        // the state point_'s machine fields hold
+  bool have_written_ = false;   // (a resume's carried point: not known as a state)
   long long acked_ = 0;
   long long acked_written_ = 0;
 };
