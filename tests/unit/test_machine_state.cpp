@@ -1,4 +1,6 @@
 #include <cmath>
+#include <cstring>
+#include <string>
 #include <catch2/catch.hpp>
 
 #include "gcode/core/machine_state.hpp"
@@ -165,4 +167,40 @@ TEST_CASE("Z-hop: a lift that comes back down before extruding", "[machine_state
   apply(s, "G1 X0 E2");
   CHECK_FALSE(s.lifted);
   CHECK_FALSE(apply(s, "G1 Z0.2").z_hop_return);
+}
+
+TEST_CASE("a relative E move's filament is the exact difference's double, bit for bit, on every fixture",
+          "[machine_state]") {
+  // The filament of a plain relative E word is taken from the word's own
+  // value instead of dividing the exact difference: the same double.
+  std::size_t relative = 0;
+  for (const std::string& name : gctest::fixture_names()) {
+    std::string text = gctest::read_file(gctest::fixture_path(name));
+    gcode::MachineState s = gctest::initial_state(text);
+    for (const std::string& raw : gctest::split_lines(text)) {
+      gcode::Line line = gcode::Line::parse(raw);
+      const gcode::Fixed before = s.exact[kE];
+      const bool was_relative = s.relative_e;
+      gcode::Move m = s.apply(line);
+      if (line.find('E') == nullptr || !(line.is_g(0) || line.is_g(1) || line.is_g(2) || line.is_g(3))) continue;
+      const double exact = (s.exact[kE] - before).to_double();
+      if (std::memcmp(&m.filament, &exact, sizeof exact) != 0) {
+        FAIL_CHECK(name << ": " << raw << ": " << m.filament << " against " << exact);
+        break;
+      }
+      relative += was_relative ? 1 : 0;
+    }
+  }
+  CHECK(relative > 10000);
+  // Junk at the edges: saturation, a signed zero, nine decimals, huge values.
+  gcode::MachineState r;
+  apply(r, "M83");
+  for (const char* t : {"G1 E-0", "G1 E0.000000001", "G1 E-0.000000001", "G1 E9000000000", "G1 E9000000000",
+                        "G1 E-9000000000", "G1 E123456.123456789", "G1 E9007199.254740993"}) {
+    const gcode::Fixed before = r.exact[kE];
+    gcode::Move m = apply(r, t);
+    const double exact = (r.exact[kE] - before).to_double();
+    INFO(t);
+    CHECK(std::memcmp(&m.filament, &exact, sizeof exact) == 0);
+  }
 }

@@ -60,6 +60,20 @@ Fixed word_mm(const Word& w, bool inches) {
   return s.exact[i].to_double();
 }
 
+// The filament of a move, from its exact difference `d`. A plain relative
+// E word in mm is that difference (unless the sum saturated), and where
+// both are exact integers as doubles (below 2^53 units) the word's own
+// value is the same correctly rounded double as d.to_double(): one
+// division by 10^9 less on most extrusions (perf: the hottest instruction
+// of a whole pass). A zero keeps to_double()'s sign.
+double filament_of(const MachineState& s, const Word& e, Fixed d) {
+  constexpr std::int64_t kExactInDouble = std::int64_t{1} << 53;
+  if (s.relative_e && !s.inches && e.plain && e.decimals <= Fixed::kDecimals && d.units() != 0 &&
+      d.units() < kExactInDouble && d.units() > -kExactInDouble && d == e.fixed())
+    return e.value();
+  return d.to_double();
+}
+
 void apply_motion(MachineState& s, const Line& line, Move& m) {
   const bool inches = s.inches;
   // One pass over the words instead of a find() per letter (this runs for
@@ -94,7 +108,7 @@ void apply_motion(MachineState& s, const Line& line, Move& m) {
   m.end = s.position;
   m.feedrate = s.feedrate;
   // The exact difference: 5.0348 after 4.9 is 0.1348, not 0.13480000000000025.
-  m.filament = axis[kE] != nullptr ? (s.exact[kE] - e0).to_double() : 0.0;
+  m.filament = axis[kE] != nullptr ? filament_of(s, *axis[kE], s.exact[kE] - e0) : 0.0;
   double dx = end[kX] - start[kX], dy = end[kY] - start[kY], dz = end[kZ] - start[kZ];
   m.z_changed = dz != 0;
   if (m.kind == MoveKind::Arc) {
