@@ -101,7 +101,7 @@ TEST_CASE("gc-send: a reset while paused resumes into the pause, the resume retu
   std::string dir = gctest::temp_dir();
   std::string status = dir + "/status.json", fifo = dir + "/control";
   auto wait_for = [&](const std::string& state) {
-    return gctest::wait_for_line(status, "\"" + state + "\"");
+    return gctest::wait_until("grep -q '\"" + state + "\"' " + quote(status) + " 2>/dev/null");
   };
   std::string during = gctest::wait_for_fifo(fifo) + "sleep 0.15; echo pause > " + quote(fifo) + "\n" + wait_for("paused") +
                        "kill -USR1 $vp; sleep 0.3\n" + wait_for("paused") + "echo resume > " + quote(fifo);
@@ -153,7 +153,7 @@ gctest::RunResult killed_when(const std::string& dir, const std::string& input, 
 
 // Waits until gc-send's status file says paused, or gc-send ($gs) ended.
 std::string wait_paused(const std::string& status) {
-  return gctest::wait_for_line(status, "\"paused\"", {.alive = "$gs"});
+  return gctest::wait_until("{ grep -q '\"paused\"' " + quote(status) + " 2>/dev/null || ! kill -0 $gs; }");
 }
 
 // ... killed after `seconds`.
@@ -181,7 +181,7 @@ gctest::RunResult killed_while_pausing(const std::string& dir, const std::string
       quote(reset_pieces()) + " 2>/dev/null & gs=$!\n" + gctest::wait_for_fifo(fifo) +
       // In layer 1, however late a loaded machine started gc-send (a pause in
       // the start code, before anything was extruded, is another case).
-      gctest::wait_for_line(status, "\"layer\": 1,") +
+      gctest::wait_until("grep -q '\"layer\": 1,' " + quote(status) + " 2>/dev/null") +
       "sleep 0.5; echo pause now > " + quote(fifo) + "\n" + kill_when +
       "\nkill -9 $gs; wait $gs 2>/dev/null; rm -f " + quote(status) + "\n" + between + "\n" + send + " --resume " +
       quote(journal) + " " + quote(reset_pieces()) + " & gs=$!\n" + wait_paused(status) +
@@ -264,8 +264,11 @@ namespace {
 // first record matching `marker` (restore=[1-9]: the way back after a
 // reset begins; paused=1: the pause block does).
 std::string acknowledged_after(const std::string& dir, const std::string& marker, int lines) {
-  return gctest::wait_for_line(dir + "/print.journal", "^A ",
-                               {.tries = 5000, .pause = 0.002, .after = marker, .count = lines});
+  const std::string journal = quote(dir + "/print.journal");
+  return gctest::wait_until("grep -q '" + marker + "' " + journal + " 2>/dev/null && [ $(awk '/" + marker +
+                                "/{r=1} r && /^A /' " + journal + " 2>/dev/null | wc -l) -ge " +
+                                std::to_string(lines) + " ]",
+                            5000, 0.002);
 }
 
 std::string in_way_back(const std::string& dir, int lines) { return acknowledged_after(dir, "restore=[1-9]", lines); }

@@ -121,15 +121,6 @@ std::string wait_for_fifo(const std::string& path) { return wait_until("[ -p " +
 
 std::string wait_for_link(const std::string& path) { return wait_until("[ -e " + quote(path) + " ]", 500); }
 
-std::string wait_for_line(const std::string& file, const std::string& pattern, const LineWait& how) {
-  std::string options;
-  if (!how.alive.empty()) options += " --alive " + how.alive;
-  if (!how.after.empty()) options += " --after " + quote(how.after);
-  if (how.count != 1) options += fmt::format(" --count {}", how.count);
-  return fmt::format("{}{} {} {:g} {} {}\n", quote(tool_path("gctest_wait")), options, how.tries, how.pause, quote(file),
-                     quote(pattern));
-}
-
 std::string tool_command(std::string_view tool, const std::string& args) {
   return quote(tool_path(tool)) + " " + args;
 }

@@ -75,19 +75,6 @@ std::string wait_until(const std::string& condition, int tries = 1000, double pa
 std::string wait_for_fifo(const std::string& path);
 // ... until gc-virtual-printer made its pty's link at `path` (up to 5 s).
 std::string wait_for_link(const std::string& path);
-// ... until a line of `file` matches the basic regular expression
-// `pattern` (grep's), polled by one process (gctest_wait) instead of a grep
-// and a sleep a try. `alive`: a process (a shell word such as "$gs") whose
-// end stops the wait too. `after`: count only from the first line that
-// matches it on, and wait for `count` such lines.
-struct LineWait {
-  int tries = 1000;
-  double pause = 0.01;
-  std::string alive{};
-  std::string after{};
-  int count = 1;
-};
-std::string wait_for_line(const std::string& file, const std::string& pattern, const LineWait& how = {});
 // The shell command line that runs a built tool with `args` (already quoted).
 std::string tool_command(std::string_view tool, const std::string& args);
 
