@@ -326,7 +326,10 @@ TEST_CASE("journal: a resume's new journal holds the commands it carries from th
   CHECK(c.entries.back().n == 301);
   CHECK(c.entries.back().point == point(300));
   CHECK(c.acknowledged == 301);
-  CHECK(slurp(path).find("\nS ", 1) == slurp(path).rfind("\nS "));  // one full point: the rest are deltas
+  const std::string text = slurp(path);
+  std::size_t full_points = 0;
+  for (std::size_t p = 0; (p = text.find("\nS ", p)) != std::string::npos; ++p) ++full_points;
+  CHECK(full_points == 1);  // one full point: the rest are deltas
 }
 
 TEST_CASE("input identity: a file's size and time, any stream's prefix hash", "[serial][journal]") {

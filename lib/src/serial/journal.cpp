@@ -124,7 +124,7 @@ void JournalWriter::sent(std::uint64_t n, const JournalFields& point) {
     last_ = point;
     buffer_ += encode_journal_record(point_record('S', n, point));
     have_last_ = true;
-    keep(n, point);
+    keep(n, {});
     return;
   }
   JournalFields changes = point.changed_since(last_);

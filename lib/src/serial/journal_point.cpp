@@ -112,10 +112,6 @@ class FieldReader {
   std::string& problem_;
 };
 
-}  // namespace
-
-namespace {
-
 // What write_machine_fields writes besides the motion fields (x y z e, f,
 // fil): a field added there belongs here too.
 bool same_settings(const MachineState& a, const MachineState& b) {
@@ -130,30 +126,24 @@ bool same_settings(const MachineState& a, const MachineState& b) {
 
 }  // namespace
 
+// The motion fields first (every command changes some), then the settings.
 void write_machine_fields(const MachineState& s, JournalFields& f, const MachineState* before) {
-  if (before != nullptr && same_settings(*before, s)) {
-    for (int a = 0; a < 4; ++a) f.set(kAxisKeys[a], fixed_text(s.at(a)));
-    f.set("f", double_text(s.feedrate));
-    f.set("fil", double_text(s.filament_total));
-    return;
-  }
-  for (int a = 0; a < 4; ++a) {
-    f.set(kAxisKeys[a], fixed_text(s.at(a)));
-    f.set(kOffsetKeys[a], fixed_text(s.offset[static_cast<std::size_t>(a)]));
-  }
+  for (int a = 0; a < 4; ++a) f.set(kAxisKeys[a], fixed_text(s.at(a)));
+  f.set("f", double_text(s.feedrate));
+  f.set("fil", double_text(s.filament_total));
+  if (before != nullptr && same_settings(*before, s)) return;
+  for (int a = 0; a < 4; ++a) f.set(kOffsetKeys[a], fixed_text(s.offset[static_cast<std::size_t>(a)]));
   std::string known;
   for (int a = 0; a < 4; ++a)
     if (s.known[static_cast<std::size_t>(a)]) known += kAxisKeys[a];
   f.set("known", known);
-  f.set("f", double_text(s.feedrate));
   f.set("g91", s.relative_xyz ? "1" : "0");
   f.set("m83", s.relative_e ? "1" : "0");
   f.set("g20", s.inches ? "1" : "0");
   f.set("emode", s.e_mode_set ? "1" : "0");
   f.set("eg90", s.e_follows_g90 ? "1" : "0");
-  f.set("fw", std::string(fw_state(s)));
+  f.set("fw", fw_state(s));
   f.set("tool", std::to_string(s.tool));
-  f.set("fil", double_text(s.filament_total));
   f.set("hot", hotends(s));
   f.set("bed", double_text(s.bed_target));
   f.set("fan", double_text(s.fan));

@@ -178,10 +178,11 @@ ResumePlan after_reset(const JournalContents& journal, const ResumeLimits& limit
     after = before;
     --i;
   }
+  // (The loop stops before looking at the oldest line.)
+  surely_ran = surely_ran || is_drained(journal.entries[i].point);
   // Short of the planner's moves at the journal's oldest line: the lines
   // before it, which the printer may have lost, are no longer held.
-  if (i == 0 && !surely_ran && !is_drained(journal.entries[0].point) && moves < limits.planner_blocks &&
-      journal.entries[0].n > 1)
+  if (i == 0 && !surely_ran && moves < limits.planner_blocks && journal.entries[0].n > 1)
     return lost_before(journal.entries[0].n, plan);
   if (!take_entry(journal, i, plan)) return plan;
   plan.track = read_track_fields(journal.entries[i].point, plan.state);

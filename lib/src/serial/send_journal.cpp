@@ -19,14 +19,15 @@ constexpr std::size_t kEndsKept = 8192;
 
 SendJournal::SendJournal(JournalOptions options, const InputIdentity& input, std::string_view port,
                          std::vector<JournalEntry> carried)
-    : writer_(options, journal_header(input, port), carried), options_sync_(options.sync_interval) {
+    : writer_(options, journal_header(input, port), std::move(carried)), options_sync_(options.sync_interval) {
   checkpoint_ = hash_text(PrefixHash().digest());
-  if (carried.empty()) return;
+  const JournalFields* carried_last = writer_.last_point();
+  if (carried_last == nullptr) return;
   // Go on from the point of the command that ran last, already written.
-  point_ = carried.back().point;
+  point_ = *carried_last;
   last_line_ = point_.count("line");
   last_off_ = point_.count("off");
-  acked_ = acked_written_ = static_cast<long long>(carried.back().n);
+  acked_ = acked_written_ = static_cast<long long>(writer_.acknowledged_line());
 }
 
 void SendJournal::checkpoint(std::uint64_t bytes, std::uint64_t hash) {
@@ -61,9 +62,8 @@ void SendJournal::numbered(const NumberedCommand& c) {
   point_.set("layer", std::to_string(c.layer));
   point_.set("own", c.source_line == 0 ? "1" : "0");
   point_.set("end", c.closing ? "1" : "0");
-  write_machine_fields(*c.after, point_, have_written_ ? &written_ : nullptr);
+  write_machine_fields(*c.after, point_, written_ ? &*written_ : nullptr);
   written_ = *c.after;
-  have_written_ = true;
   point_.set("hash", checkpoint_);
   point_.set("hoff", std::to_string(checkpoint_at_));
   point_.set("speed", fmt::format("{:g}", live_.speed));

@@ -87,6 +87,10 @@ class JournalWriter {
   // The print ended normally: F, synced. Nothing more is written.
   void finish(double now);
 
+  // The newest command's full point and the acknowledged line (after a
+  // resume's carried commands: the one the print goes on after).
+  const JournalFields* last_point() const { return have_last_ ? &last_ : nullptr; }
+  std::uint64_t acknowledged_line() const { return acked_; }
   const std::string& path() const { return options_.path; }
   std::uint64_t bytes_written() const { return bytes_total_; }
   std::size_t file_bytes() const { return file_bytes_; }

@@ -8,6 +8,7 @@
 // the newest only: one `A` record a turn instead of one per `ok`.
 #include <cstdint>
 #include <deque>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -71,8 +72,9 @@ class SendJournal {
   std::uint64_t last_off_ = 0;
   LiveControl live_;
   JournalFields point_;
-  MachineState written_;        // the state point_'s machine fields hold
-  bool have_written_ = false;   // (a resume's carried point: not known as a state)
+  // The state point_'s machine fields hold (none for a resume's carried
+  // point: the next command writes them all).
+  std::optional<MachineState> written_;
   long long acked_ = 0;
   long long acked_written_ = 0;
 };
