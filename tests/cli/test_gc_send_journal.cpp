@@ -53,6 +53,20 @@ TEST_CASE("gc-send journal: a finished print reads back, marked finished, with t
   CHECK(c.entries.back().n == commands.size() + 1);
   CHECK(c.acknowledged == c.entries.back().n);
   for (std::size_t i = 1; i < c.entries.size(); ++i) CHECK(c.entries[i].n == c.entries[i - 1].n + 1);
+  // The commands whose answer means every one before them ran (the start
+  // code's G28, the closing M400) are marked drained, and only they: a
+  // walk back after a reset stops there.
+  std::size_t drained = 0;
+  for (std::size_t i = 0; i < c.entries.size(); ++i) {
+    if (!gcode::serial::is_drained(c.entries[i].point)) continue;
+    ++drained;
+    const std::string command = i + 1 < c.entries.size() ? commands[i].text : "M400";
+    INFO(command);
+    CHECK((command.starts_with("G28") || command.starts_with("M400") || command.starts_with("G29") ||
+           command.starts_with("G4")));
+  }
+  CHECK(drained >= 2);
+  CHECK(gcode::serial::is_drained(c.entries.back().point));
   // The entry of the input's last command names its line and the end of
   // it, and holds the state the input leaves the machine in.
   const gcode::serial::JournalEntry& last = c.entries[c.entries.size() - 2];
