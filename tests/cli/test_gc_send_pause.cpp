@@ -214,8 +214,14 @@ void check_pause_now(double speed) {
     // The planner was busy: a real measurement. (A printer faster than the
     // file can have run dry while the pacer was learning its pace.)
     if (speed == 1) CHECK(path > 0.2);
+    // gc-send's figure is its model of the planner at the request, kept
+    // from the answers as they arrive: exact when the host reads them in
+    // time. Under the sanitizers beside other tests it reads them late,
+    // and a printer that ran dry meanwhile shows a path gc-send could not
+    // see (0.79 mm reported against 0 run, 7 of 18 runs six at a time).
     double reported = number_after(r.result.err, "motion went on ");
-    CHECK(std::fabs(reported - path) < 0.05);
+    CHECK(reported >= 0);
+    if (gctest::kTimingFiguresChecked) CHECK(std::fabs(reported - path) < 0.05);
   }
 }
 
