@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config   # compiler and build
+  ninja-build                        # scripts/test.sh: one queue for the whole build
   libcli11-dev libfmt-dev libre2-dev # the library and tools
   libstb-dev                         # gc-litho: picture decoding (stb_image)
   libxxhash-dev                      # gc-send's journal: input hash and record checks

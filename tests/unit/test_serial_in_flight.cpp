@@ -6,7 +6,7 @@
 #include "gcode/serial/protocol.hpp"
 
 using namespace gcode::serial;
-using Kind = InFlight::Answer::Kind;
+using AnswerKind = InFlight::Answer::Kind;
 
 namespace {
 
@@ -24,7 +24,7 @@ InFlight lines(int n, int questions = 0) {
 TEST_CASE("in flight: a plain ok answers the oldest entry", "[serial][in_flight]") {
   InFlight f = lines(3);
   InFlight::Answer a = f.answer_to(parse_response("ok"), false);
-  CHECK(a.kind == Kind::Through);
+  CHECK(a.kind == AnswerKind::Through);
   CHECK(a.index == 0);
   CHECK(f.bytes() == 30);
   CHECK(f.lines() == 3);
@@ -34,32 +34,32 @@ TEST_CASE("in flight: a plain ok answers the oldest entry", "[serial][in_flight]
 
 TEST_CASE("in flight: an ok with nothing in flight is stray", "[serial][in_flight]") {
   InFlight f;
-  CHECK(f.answer_to(parse_response("ok"), false).kind == Kind::Stray);
-  CHECK(f.answer_to(parse_response("ok N3 P15 B3"), true).kind == Kind::Stray);
+  CHECK(f.answer_to(parse_response("ok"), false).kind == AnswerKind::Stray);
+  CHECK(f.answer_to(parse_response("ok N3 P15 B3"), true).kind == AnswerKind::Stray);
 }
 
 TEST_CASE("in flight: ok T: answers through the M105, and our questions right behind it", "[serial][in_flight]") {
   InFlight f = lines(2, 2);
   InFlight::Answer a = f.answer_to(parse_response("ok T:200.0 /200.0 B:60.0 /60.0"), false);
-  CHECK(a.kind == Kind::Through);
+  CHECK(a.kind == AnswerKind::Through);
   CHECK(a.index == 3);
   CHECK(f.asking());
   // Without an M105 in flight it answers a question written off: nothing.
-  CHECK(lines(3).answer_to(parse_response("ok T:200.0 /200.0"), false).kind == Kind::Stray);
+  CHECK(lines(3).answer_to(parse_response("ok T:200.0 /200.0"), false).kind == AnswerKind::Stray);
 }
 
 TEST_CASE("in flight: with ADVANCED_OK, ok N<n> answers through line n, an ok without N only a question",
           "[serial][in_flight]") {
   InFlight f = lines(4, 1);
   InFlight::Answer a = f.answer_to(parse_response("ok N2 P15 B3"), true);
-  CHECK(a.kind == Kind::Through);
+  CHECK(a.kind == AnswerKind::Through);
   CHECK(a.index == 1);
   CHECK(f.answer_to(parse_response("ok N9 P15 B3"), true).index == 3);  // everything numbered sent before it
   a = f.answer_to(parse_response("ok"), true);
-  CHECK(a.kind == Kind::Question);
+  CHECK(a.kind == AnswerKind::Question);
   CHECK(a.index == 4);
-  CHECK(lines(4).answer_to(parse_response("ok"), true).kind == Kind::Stray);  // frees no line
-  CHECK(lines(4).answer_to(parse_response("ok N0 P15 B3"), true).kind == Kind::Stray);
+  CHECK(lines(4).answer_to(parse_response("ok"), true).kind == AnswerKind::Stray);  // frees no line
+  CHECK(lines(4).answer_to(parse_response("ok N0 P15 B3"), true).kind == AnswerKind::Stray);
   f.erase(4);
   CHECK_FALSE(f.asking());
   CHECK(f.bytes() == 40);

@@ -66,7 +66,7 @@ PositionReport at(const MachineState& s, double dx = 0) {
 TEST_CASE("resume plan: a printer that kept running goes on after its last line", "[serial][journal]") {
   Print p = print_of("prusa_cube_0.2_mk3s_rel_zhop.gcode", 3000);
   PrinterFindings kept{PrinterCondition::KeptRunning, 3001, at(p.states[2999])};
-  ResumePlan plan = plan_resume(p.journal, kept, {});
+  serial::ResumePlan plan = plan_resume(p.journal, kept, {});
   REQUIRE(plan.possible);
   CHECK(plan.entry == 2999);
   CHECK(same_machine(plan.state, p.states[2999]));
@@ -76,12 +76,12 @@ TEST_CASE("resume plan: a printer that kept running goes on after its last line"
 
   // Lines sent but not acknowledged before the kill still ran: the printer says so.
   PrinterFindings further{PrinterCondition::KeptRunning, 3006, at(p.states[3004])};
-  ResumePlan later = plan_resume(p.journal, further, {});
+  serial::ResumePlan later = plan_resume(p.journal, further, {});
   REQUIRE(later.possible);
   CHECK(later.entry == 3004);
 
   PrinterFindings moved{PrinterCondition::KeptRunning, 3001, at(p.states[2999], 0.05)};
-  ResumePlan refused = plan_resume(p.journal, moved, {});
+  serial::ResumePlan refused = plan_resume(p.journal, moved, {});
   CHECK_FALSE(refused.possible);
   CHECK(refused.refusal.find("the printer is at X") == 0);
 
@@ -93,7 +93,7 @@ TEST_CASE("resume plan: after a reset, back over the moves the planner may have 
   Print p = print_of("prusa_cube_0.2_mk3s_rel_zhop.gcode", 5000);
   ResumeLimits limits;
   limits.planner_blocks = 16;
-  ResumePlan plan = plan_resume(p.journal, {PrinterCondition::Reset, -1, std::nullopt}, limits);
+  serial::ResumePlan plan = plan_resume(p.journal, {PrinterCondition::Reset, -1, std::nullopt}, limits);
   REQUIRE(plan.possible);
   CHECK(plan.redone_moves == 16);
   CHECK(plan.entry < 4999);
@@ -113,7 +113,7 @@ TEST_CASE("resume plan: after a reset, back over the moves the planner may have 
   CHECK(same_machine(plan.state, p.states[plan.entry]));
 
   limits.can_home_xy_alone = false;
-  ResumePlan delta = plan_resume(p.journal, {PrinterCondition::Reset, -1, std::nullopt}, limits);
+  serial::ResumePlan delta = plan_resume(p.journal, {PrinterCondition::Reset, -1, std::nullopt}, limits);
   CHECK_FALSE(delta.possible);
   CHECK(delta.refusal.find("cannot home X and Y") != std::string::npos);
 }
@@ -126,7 +126,7 @@ TEST_CASE("resume plan: after a reset, a journal that lost the lines to go back 
   // (as it once did) would skip every line between them.
   Print p = print_of("prusa_cube_0.2_mk3s_rel_zhop.gcode", 5000);
   p.journal.entries.erase(p.journal.entries.begin() + 4999);
-  ResumePlan plan = plan_resume(p.journal, {PrinterCondition::Reset, -1, std::nullopt}, limits);
+  serial::ResumePlan plan = plan_resume(p.journal, {PrinterCondition::Reset, -1, std::nullopt}, limits);
   CHECK_FALSE(plan.possible);
   CHECK(plan.refusal.find("no longer holds line 5000, the last the printer acknowledged") != std::string::npos);
   // A gap among the moves the planner may have lost.
@@ -157,7 +157,7 @@ TEST_CASE("resume plan: after a reset, the walk back stops at a command after wh
   // planner held only what came after it.
   Print p = print_of("prusa_cube_0.2_mk3s_rel_zhop.gcode", 5000);
   mark_drained(p.journal.entries[4994].point);
-  ResumePlan plan = plan_resume(p.journal, {PrinterCondition::Reset, -1, std::nullopt}, limits);
+  serial::ResumePlan plan = plan_resume(p.journal, {PrinterCondition::Reset, -1, std::nullopt}, limits);
   REQUIRE(plan.possible);
   CHECK(plan.entry == 4994);
   CHECK(plan.redone_moves == moves_between(p, 4994, 4999));
@@ -208,12 +208,12 @@ TEST_CASE("resume plan: the journal of a resumed print, killed before it wrote a
     CHECK(now.acknowledged == static_cast<std::uint64_t>(start.last));
 
     // The printer kept running: on after that line.
-    ResumePlan kept = plan_resume(
+    serial::ResumePlan kept = plan_resume(
         now, {PrinterCondition::KeptRunning, start.last + 1, at(p.states[start.plan.entry])}, limits);
     REQUIRE(kept.possible);
     CHECK(same_machine(kept.state, p.states[start.plan.entry]));
     // It reset: back to that line exactly, nothing redone.
-    ResumePlan reset = plan_resume(now, {PrinterCondition::Reset, -1, std::nullopt}, limits);
+    serial::ResumePlan reset = plan_resume(now, {PrinterCondition::Reset, -1, std::nullopt}, limits);
     INFO(reset.refusal);
     REQUIRE(reset.possible);
     CHECK(same_machine(reset.state, p.states[start.plan.entry]));
