@@ -83,3 +83,50 @@ TEST_CASE("in flight: entries arrive once their last byte is written", "[serial]
   CHECK(f[0].arrival == 115);  // once
   CHECK(f[2].arrival == 200);
 }
+
+TEST_CASE("in flight: the marked lines, questions and probes are counted as entries come and go",
+          "[serial][in_flight]") {
+  // Against a walk of the entries, after every kind of change.
+  auto walked = [](const InFlight& f, InFlight::Mark m) {
+    std::size_t n = 0;
+    for (const InFlight::Entry& e : f) n += (e.marks & m) ? 1 : 0;
+    return n;
+  };
+  auto agrees = [&](const InFlight& f) {
+    for (InFlight::Mark m : {InFlight::kLongRunning, InFlight::kUnbounded, InFlight::kSilentWait, InFlight::kMove})
+      REQUIRE(f.marked(m) == walked(f, m));
+    std::size_t questions = 0, probes = 0;
+    for (const InFlight::Entry& e : f) {
+      questions += e.number == InFlight::kQuestion;
+      probes += e.number == InFlight::kPaceProbe;
+    }
+    REQUIRE(f.lines() == f.size() - questions);
+    REQUIRE(f.asking() == (questions > 0));
+    REQUIRE(f.probing() == (probes > 0));
+  };
+  InFlight f;
+  std::uint64_t end = 0;
+  f.push(1, 10, false, end += 10, InFlight::kMove);
+  f.push(2, 10, false, end += 10, InFlight::kLongRunning | InFlight::kUnbounded);
+  f.push(InFlight::kPaceProbe, 4, false, end += 4);
+  f.push(3, 10, false, end += 10, InFlight::kSilentWait);
+  f.push(InFlight::kQuestion, 5, true, end += 5);
+  f.push(4, 10, false, end += 10, InFlight::kMove);
+  agrees(f);
+  CHECK(f.marked(InFlight::kMove) == 2);
+  CHECK(f.marked(InFlight::kLongRunning) == 1);
+  CHECK(f.pop_front().number == 1);
+  agrees(f);
+  CHECK(f.marked(InFlight::kMove) == 1);
+  f.erase(1);  // the probe
+  agrees(f);
+  CHECK_FALSE(f.probing());
+  CHECK(f.drop_from(3) == 25);  // line 3, the question behind it and line 4
+  agrees(f);
+  CHECK(f.marked(InFlight::kSilentWait) == 0);
+  CHECK(f.marked(InFlight::kMove) == 0);
+  CHECK(f.marked(InFlight::kUnbounded) == 1);
+  f.clear();
+  agrees(f);
+  CHECK(f.marked(InFlight::kLongRunning) == 0);
+}

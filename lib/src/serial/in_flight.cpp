@@ -48,34 +48,46 @@ InFlight::Entry InFlight::pop_front() {
   Entry e = entries_.front();
   entries_.pop_front();
   bytes_ -= e.bytes;
+  count(e, -1);
   return e;
 }
 
 void InFlight::erase(std::size_t index) {
   bytes_ -= entries_[index].bytes;
+  count(entries_[index], -1);
   entries_.erase(entries_.begin() + static_cast<std::ptrdiff_t>(index));
 }
 
 std::size_t InFlight::drop_from(long long n) {
   auto first = std::find_if(entries_.begin(), entries_.end(), [n](const Entry& e) { return e.number >= n; });
   std::size_t stale = 0;
-  for (auto it = first; it != entries_.end(); ++it) stale += it->bytes;
+  for (auto it = first; it != entries_.end(); ++it) {
+    stale += it->bytes;
+    count(*it, -1);
+  }
   bytes_ -= stale;
   entries_.erase(first, entries_.end());
   return stale;
 }
 
-std::size_t InFlight::lines() const {
-  return static_cast<std::size_t>(
-      std::count_if(entries_.begin(), entries_.end(), [](const Entry& e) { return e.number != kQuestion; }));
+void InFlight::count(const Entry& e, int sign) {
+  auto add = [sign](std::size_t& n) { n = sign > 0 ? n + 1 : n - 1; };
+  if (e.number == kQuestion) add(counts_.questions);
+  if (e.number == kPaceProbe) add(counts_.probes);
+  if (e.marks & kLongRunning) add(counts_.long_running);
+  if (e.marks & kUnbounded) add(counts_.unbounded);
+  if (e.marks & kSilentWait) add(counts_.silent_wait);
+  if (e.marks & kMove) add(counts_.moves);
 }
 
-bool InFlight::asking() const {
-  return std::any_of(entries_.begin(), entries_.end(), [](const Entry& e) { return e.number == kQuestion; });
-}
-
-bool InFlight::probing() const {
-  return std::any_of(entries_.begin(), entries_.end(), [](const Entry& e) { return e.number == kPaceProbe; });
+std::size_t InFlight::marked(Mark mark) const {
+  switch (mark) {
+    case kLongRunning: return counts_.long_running;
+    case kUnbounded: return counts_.unbounded;
+    case kSilentWait: return counts_.silent_wait;
+    case kMove: return counts_.moves;
+  }
+  return 0;
 }
 
 }  // namespace gcode::serial

@@ -210,7 +210,14 @@ void Sender::pump(double now) {
 
 void Sender::push_flight(long long number, std::size_t bytes, bool temperature_query) {
   out_total_ += bytes;
-  flight_.push(number, bytes, temperature_query, out_total_);
+  std::uint8_t marks = 0;
+  if (number > 0) {
+    const Slot& s = slot(number);
+    marks = static_cast<std::uint8_t>((s.long_running ? InFlight::kLongRunning : 0) |
+                                      (s.unbounded ? InFlight::kUnbounded : 0) |
+                                      (s.silent_wait ? InFlight::kSilentWait : 0) | (s.move ? InFlight::kMove : 0));
+  }
+  flight_.push(number, bytes, temperature_query, out_total_, marks);
 }
 
 void Sender::send_unnumbered(std::string_view command, bool temperature_query, bool track) {
@@ -621,25 +628,19 @@ void Sender::on_start(std::string_view text, double now) {
   }
 }
 
-bool Sender::long_command_in_flight() const {
-  return std::any_of(flight_.begin(), flight_.end(),
-                     [this](const InFlight::Entry& f) { return f.number > 0 && slot(f.number).long_running; });
-}
+bool Sender::long_command_in_flight() const { return flight_.marked(InFlight::kLongRunning) > 0; }
 
 // Its own pause, or a command waiting for the user without a word (Prusa's
 // M600): the printer is healthy however long that takes.
 bool Sender::waiting_for_user() const {
-  return printer_paused_ || std::any_of(flight_.begin(), flight_.end(), [this](const InFlight::Entry& f) {
-           return f.number > 0 && slot(f.number).silent_wait;
-         });
+  return printer_paused_ || flight_.marked(InFlight::kSilentWait) > 0;
 }
 
 // A long command on a firmware that says nothing until it is done
 // (Klipper's and RepRapFirmware's G28, G29, G4).
 bool Sender::silent_command_in_flight() const {
   if (config_.firmware->busy_keepalive) return false;
-  return std::any_of(flight_.begin(), flight_.end(),
-                     [this](const InFlight::Entry& f) { return f.number > 0 && slot(f.number).unbounded; });
+  return flight_.marked(InFlight::kUnbounded) > 0;
 }
 
 double Sender::current_timeout() const {
@@ -651,9 +652,7 @@ double Sender::current_timeout() const {
 }
 
 bool Sender::paced(double now) {
-  int moves = 0;
-  for (const InFlight::Entry& f : flight_)
-    if (f.number > 0 && slot(f.number).move) ++moves;
+  int moves = static_cast<int>(flight_.marked(InFlight::kMove));
   return pacer_.blocked(now, moves, next_send_, clock_.planner_blocks());
 }
 
