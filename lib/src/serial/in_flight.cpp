@@ -74,20 +74,8 @@ void InFlight::count(const Entry& e, int sign) {
   auto add = [sign](std::size_t& n) { n = sign > 0 ? n + 1 : n - 1; };
   if (e.number == kQuestion) add(counts_.questions);
   if (e.number == kPaceProbe) add(counts_.probes);
-  if (e.marks & kLongRunning) add(counts_.long_running);
-  if (e.marks & kUnbounded) add(counts_.unbounded);
-  if (e.marks & kSilentWait) add(counts_.silent_wait);
-  if (e.marks & kMove) add(counts_.moves);
-}
-
-std::size_t InFlight::marked(Mark mark) const {
-  switch (mark) {
-    case kLongRunning: return counts_.long_running;
-    case kUnbounded: return counts_.unbounded;
-    case kSilentWait: return counts_.silent_wait;
-    case kMove: return counts_.moves;
-  }
-  return 0;
+  for (std::size_t bit = 0; bit < kMarks; ++bit)
+    if (e.marks & (1u << bit)) add(marked_[bit]);
 }
 
 }  // namespace gcode::serial

@@ -4,6 +4,8 @@
 // unnumbered questions (M105). It owns the rule of answers: every line in
 // flight gets one answer, in order, and each "ok" frees what it answers for
 // (answer_to), no more.
+#include <array>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <deque>
@@ -69,6 +71,7 @@ class InFlight {
     entries_.clear();
     bytes_ = 0;
     counts_ = {};
+    marked_ = {};
   }
   // Entries whose last byte is within the first `written` bytes ever
   // written reach the printer at the time `arrival(bytes written after them)` says.
@@ -90,16 +93,16 @@ class InFlight {
   bool asking() const { return counts_.questions > 0; }
   bool probing() const { return counts_.probes > 0; }
   // Entries in flight with `mark`.
-  std::size_t marked(Mark mark) const;
+  std::size_t marked(Mark mark) const { return marked_[static_cast<std::size_t>(std::countr_zero(static_cast<unsigned>(mark)))]; }
   const Entry& front() const { return entries_.front(); }
   const Entry& operator[](std::size_t i) const { return entries_[i]; }
   auto begin() const { return entries_.begin(); }
   auto end() const { return entries_.end(); }
 
  private:
+  static constexpr std::size_t kMarks = 4;  // the bits of Mark
   struct Counts {
     std::size_t questions = 0, probes = 0;
-    std::size_t long_running = 0, unbounded = 0, silent_wait = 0, moves = 0;
   };
   // `e` comes (+1) or goes (-1).
   void count(const Entry& e, int sign);
@@ -107,6 +110,7 @@ class InFlight {
   std::deque<Entry> entries_;
   std::size_t bytes_ = 0;
   Counts counts_;
+  std::array<std::size_t, kMarks> marked_{};  // by Mark's bit
 };
 
 }  // namespace gcode::serial
