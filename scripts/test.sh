@@ -42,10 +42,15 @@ CC=clang CXX=clang++ cmake -S . -B build-asan $(generator build-asan) -DCMAKE_BU
 # mostly wait for the virtual printer's simulated moves (about a fifth of
 # two cores idle). The tests keep their priority, and the build takes the
 # whole machine once they are done.
-# In its own process group (setsid), so that a failed or interrupted suite
-# stops the whole build: cmake, ninja and the compilers.
-setsid nice -n 19 cmake --build build-asan -j"$jobs" >build-asan/build.log 2>&1 &
+# In its own process group (job control on for the launch), so that a
+# failed or interrupted suite stops the whole build: cmake, ninja and the
+# compilers. Not in a session of its own (setsid): Linux shares the CPU
+# between sessions first (autogroups), and the build would take half of it
+# whatever its nice value.
+set -m
+nice -n 19 cmake --build build-asan -j"$jobs" >build-asan/build.log 2>&1 &
 asan_build=$!
+set +m
 trap 'kill -- -"$asan_build" 2>/dev/null; true' EXIT
 trap 'exit 130' INT TERM
 ctest --test-dir build --output-on-failure -j"$slots" -LE timing
