@@ -44,6 +44,10 @@ void VirtualLink::on_io(short revents) {
       if (n > 0) {
         printer_.advance(now);  // what happened before these bytes arrived
         printer_.receive(std::string_view(buf, static_cast<std::size_t>(n)), now);
+        // A short read took all there was: the next poll says when there
+        // is more (a read to find it empty would cost a system call each
+        // time the host writes).
+        if (static_cast<std::size_t>(n) < sizeof buf) break;
         continue;
       }
       if (n == 0) {
@@ -100,6 +104,9 @@ void VirtualLink::pump() {
   std::string_view ready = printer_.transmitted(now);
   out_.append(ready);
   printer_.take(ready.size());
+  // The log goes out before the answers: whoever reads it after the host
+  // got an answer finds the commands that ended before it.
+  printer_.flush_log();
   if (watch_ < 0) {
     out_.clear();  // no link: the model's lines go nowhere
     return;

@@ -71,10 +71,10 @@ int run_virtual_printer(const VirtualPrinterRun& run, const VirtualPrinterConfig
   if (!run.log.empty()) {
     log.reset(std::fopen(run.log.c_str(), "w"));
     if (!log) throw std::runtime_error(fmt::format("cannot write {}", run.log));
-    // A line a command: whoever watches the log while the printer runs
+    // Buffered, and written out by the link each time the model has run
+    // (VirtualLink::pump): whoever watches the log while the printer runs
     // (a test waiting for it to fall still) sees each command as it ends,
-    // not 4 KB later, or only at exit.
-    std::setvbuf(log.get(), nullptr, _IOLBF, 0);
+    // with one write for the commands of a turn instead of one each.
   }
   EventLoop loop;
   VirtualPrinter printer(config, log.get());

@@ -90,6 +90,11 @@ class VirtualPrinter {
   // takes them with `take(n)`.
   std::string_view transmitted(double now) const { return wire_.transmitted(now); }
   void take(std::size_t n) { wire_.take(n); }
+  // Writes out the log lines the model has buffered (one write for all the
+  // commands that ended since the last call, not one each).
+  void flush_log() {
+    if (log_ != nullptr) std::fflush(log_);
+  }
 
   bool disconnected() const { return disconnected_; }
   // The board restarts at `t` (after advance(t)): what it had queued and
