@@ -70,7 +70,7 @@ TEST_CASE("gc-send: while it waits for the port the status file says reconnectin
   std::string fifo = dir + "/control";
   // The drop lasts 60 s of wall time; the cancel comes as soon as the
   // status file says reconnecting.
-  std::string during = gctest::wait_until("grep -q '\"reconnecting\"' " + quote(status) + " 2>/dev/null", 600, 0.02) +
+  std::string during = gctest::wait_for_lines(quote(status), {.match = quote("\"reconnecting\""), .tries = 600, .every = 0.02}) +
                        "grep -o '\"state\": *\"[a-z]*\"' " + quote(status) + " >&2\n"
                        "echo status > " + quote(fifo) + "; sleep 0.3; echo cancel > " + quote(fifo);
   PtyRun r = send_through_pty(drop_pieces(),

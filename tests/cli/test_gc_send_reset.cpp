@@ -101,7 +101,7 @@ TEST_CASE("gc-send: a reset while paused resumes into the pause, the resume retu
   std::string dir = gctest::temp_dir();
   std::string status = dir + "/status.json", fifo = dir + "/control";
   auto wait_for = [&](const std::string& state) {
-    return gctest::wait_until("grep -q '\"" + state + "\"' " + quote(status) + " 2>/dev/null");
+    return gctest::wait_for_lines(quote(status), {.match = quote("\"" + state + "\"")});
   };
   std::string during = gctest::wait_for_fifo(fifo) + "sleep 0.15; echo pause > " + quote(fifo) + "\n" + wait_for("paused") +
                        "kill -USR1 $vp; sleep 0.3\n" + wait_for("paused") + "echo resume > " + quote(fifo);
@@ -153,7 +153,7 @@ gctest::RunResult killed_when(const std::string& dir, const std::string& input, 
 
 // Waits until gc-send's status file says paused, or gc-send ($gs) ended.
 std::string wait_paused(const std::string& status) {
-  return gctest::wait_until("{ grep -q '\"paused\"' " + quote(status) + " 2>/dev/null || ! kill -0 $gs; }");
+  return gctest::wait_for_lines(quote(status), {.match = quote("\"paused\""), .while_alive = "$gs"});
 }
 
 // ... killed after `seconds`.
@@ -181,7 +181,7 @@ gctest::RunResult killed_while_pausing(const std::string& dir, const std::string
       quote(reset_pieces()) + " 2>/dev/null & gs=$!\n" + gctest::wait_for_fifo(fifo) +
       // In layer 1, however late a loaded machine started gc-send (a pause in
       // the start code, before anything was extruded, is another case).
-      gctest::wait_until("grep -q '\"layer\": 1,' " + quote(status) + " 2>/dev/null") +
+      gctest::wait_for_lines(quote(status), {.match = quote("\"layer\": 1,")}) +
       "sleep 0.5; echo pause now > " + quote(fifo) + "\n" + kill_when +
       "\nkill -9 $gs; wait $gs 2>/dev/null; rm -f " + quote(status) + "\n" + between + "\n" + send + " --resume " +
       quote(journal) + " " + quote(reset_pieces()) + " & gs=$!\n" + wait_paused(status) +
@@ -218,8 +218,10 @@ TEST_CASE("gc-send --resume after kill -9: a reset in the resumed print comes ba
     std::string dir = gctest::temp_dir();
     const std::string log = quote(dir + "/executed.log");
     auto r = killed_then(dir, reset_pieces(), 1.5,
-                         "sleep 0.3; n0=$(wc -l < " + log + ")\n(while [ $(wc -l < " + log + ") -lt $((n0 + " +
-                             std::to_string(after) + ")) ]; do sleep 0.002; done; kill -USR1 $vp) &");
+                         "sleep 0.3; n0=$(wc -l < " + log + ")\n(" +
+                             gctest::wait_for_lines(log, {.at_least = "$((n0 + " + std::to_string(after) + "))",
+                                                          .tries = 150000, .every = 0.002}) +
+                             "kill -USR1 $vp) &");
     INFO(r.err);
     REQUIRE(r.status == 0);
     CHECK(r.err.find("resuming: the printer kept running") != std::string::npos);
@@ -265,10 +267,11 @@ namespace {
 // reset begins; paused=1: the pause block does).
 std::string acknowledged_after(const std::string& dir, const std::string& marker, int lines) {
   const std::string journal = quote(dir + "/print.journal");
-  return gctest::wait_until("grep -q '" + marker + "' " + journal + " 2>/dev/null && [ $(awk '/" + marker +
-                                "/{r=1} r && /^A /' " + journal + " 2>/dev/null | wc -l) -ge " +
-                                std::to_string(lines) + " ]",
-                            5000, 0.002);
+  return gctest::wait_for_lines(journal, {.match = "'^A '",
+                                          .after = quote(marker),
+                                          .at_least = std::to_string(lines),
+                                          .tries = 5000,
+                                          .every = 0.002});
 }
 
 std::string in_way_back(const std::string& dir, int lines) { return acknowledged_after(dir, "restore=[1-9]", lines); }
@@ -423,7 +426,7 @@ TEST_CASE("gc-send --resume through a link drop: before it starts, while it asks
     // (The resumed gc-send writes its pid into the lock it takes.)
     const std::string locked = "rm -f " + journal + ".lock; (" + gctest::wait_until("[ -s " + journal + ".lock ]", 10000, 0.001);
     const std::string ran = "n=$(($(wc -l < " + log + ") + " + (what == "after M110" ? "1" : "20") + ")); (" +
-                            gctest::wait_until("[ $(wc -l < " + log + ") -gt $n ]", 10000, 0.002);
+                            gctest::wait_for_lines(log, {.at_least = "$((n + 1))", .tries = 10000, .every = 0.002});
     std::string drop = "sleep 0.5; ";
     if (what == "before the start") {
       drop += "kill -USR2 $vp; sleep 0.05";

@@ -48,7 +48,7 @@ std::string killed_after(const std::string& args, double seconds, const std::str
   // Counted from the journal's first acknowledgement when one is named: a
   // loaded machine can take a second to start gc-send and open the printer.
   const std::string started =
-      journal.empty() ? "" : gctest::wait_until("grep -q '^A ' " + quote(journal) + " 2>/dev/null", 5000, 0.002);
+      journal.empty() ? "" : gctest::wait_for_lines(quote(journal), {.match = "'^A '", .tries = 5000, .every = 0.002});
   return gc_send(args) + " 2>/dev/null & gs=$!\n" + started + "sleep " + std::to_string(seconds) +
          "\nkill -9 $gs; wait $gs 2>/dev/null\n";
 }
@@ -58,6 +58,10 @@ std::string killed_after(const std::string& args, double seconds, const std::str
 std::string numbered_count(const std::string& dir) {
   return "awk -F'\\t' '$2 >= 0' " + quote(dir + "/executed.log") + " | wc -l";
 }
+
+// The same lines, as a pattern for gctest::wait_for_lines: a number, not -1,
+// in the second column.
+std::string numbered_line() { return quote("^[^\t]*\t[0-9]"); }
 
 void require_every_command_once(const std::string& dir, const std::string& input) {
   auto executed = gctest::parse_executed_log(gctest::read_file(dir + "/executed.log"));
@@ -101,7 +105,7 @@ TEST_CASE("gc-send --resume of a print killed before its first command begins it
   std::string script = printer_up(dir) + "kill -STOP $vp\n" +
                        gc_send("-q --port " + quote(port) + " --journal " + quote(journal) + " " + quote(input)) +
                        " 2>/dev/null & gs=$!\n" +
-                       gctest::wait_until("grep -q '^H ' " + quote(journal) + " 2>/dev/null", 5000, 0.002) +
+                       gctest::wait_for_lines(quote(journal), {.match = "'^H '", .tries = 5000, .every = 0.002}) +
                        "sleep 0.3; kill -9 $gs; wait $gs 2>/dev/null; kill -CONT $vp\n" +
                        "grep -c '^[SD] ' " + quote(journal) + " >&2\n" +
                        gc_send("--port " + quote(port) + " --resume " + quote(journal)) +
@@ -254,7 +258,7 @@ TEST_CASE("gc-send --resume after a kill -9 inside gc-send's closing M400: the p
   std::string numbered = numbered_count(dir);
   std::string script =
       printer_up(dir) + gc_send("-q --port " + quote(port) + " --journal " + quote(journal) + " " + quote(input)) +
-      " 2>/dev/null & gs=$!\n" + gctest::wait_until("grep -q ' own=1 ' " + quote(journal), 3000, 0.005) +
+      " 2>/dev/null & gs=$!\n" + gctest::wait_for_lines(quote(journal), {.match = "' own=1 '", .tries = 3000, .every = 0.005}) +
       "kill -9 $gs; wait $gs 2>/dev/null\n"
       "grep -q '^F ' " + quote(journal) + " && echo finished-before-the-kill\n"
       "sleep 1\n"  // the printer runs its queue down
@@ -283,13 +287,15 @@ TEST_CASE("gc-send --resume inside a layer: the resumed session is in that layer
   std::string input = subdivided_part(dir);
   std::string port = dir + "/printer";
   std::string journal = dir + "/print.journal";
-  std::string numbered = "$(" + numbered_count(dir) + ")";
   // The printer resets 20 commands into the resumed session, before the
   // file's next layer marker.
   std::string script =
       printer_up(dir) +
       killed_after("-q --port " + quote(port) + " --journal " + quote(journal) + " " + quote(input), 2, journal) +
-      "n0=" + numbered + "\n(while [ " + numbered + " -lt $((n0 + 20)) ]; do sleep 0.005; done; kill -USR1 $vp) &\n" +
+      "n0=$(" + numbered_count(dir) + ")\n(" +
+      gctest::wait_for_lines(quote(dir + "/executed.log"),
+                             {.match = numbered_line(), .at_least = "$((n0 + 20))", .tries = 60000, .every = 0.005}) +
+      "kill -USR1 $vp) &\n" +
       gc_send("--port " + quote(port) + " --resume " + quote(journal) + " " + quote(input)) +
       "; s=$?; kill $vp; wait $vp; exit $s";
   auto r = run(script);
@@ -334,10 +340,10 @@ TEST_CASE("gc-send --resume after a kill -9 while a cancel's end went out: never
         // lands inside it however late a loaded machine runs the script.
         printer_up(dir) + gc_send("-q --lift 10 --z-speed 0.5 --port " + quote(port) + " --journal " + quote(journal) +
                                   " --control " + quote(fifo) + " " + quote(input)) +
-        " 2>/dev/null & gs=$!\n" + gctest::wait_until("grep -q ' layer=1 ' " + quote(journal) + " 2>/dev/null") +
+        " 2>/dev/null & gs=$!\n" + gctest::wait_for_lines(quote(journal), {.match = "' layer=1 '"}) +
         "sleep 0.3\n"  // inside layer 1
         "echo cancel > " + quote(fifo) + "\n" +
-        gctest::wait_until("grep -q ' state=cancelling ' " + quote(journal), 2000, 0.002) +
+        gctest::wait_for_lines(quote(journal), {.match = "' state=cancelling '", .tries = 2000, .every = 0.002}) +
         "kill -9 $gs; wait $gs 2>/dev/null\n"
         "grep -q '^F ' " + quote(journal) + " && echo finished-before-the-kill\n" +
         (reset ? "kill -USR1 $vp\n" : "") +

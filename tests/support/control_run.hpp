@@ -80,10 +80,8 @@ inline PauseRun send_with_control(const std::string& file, const std::string& pr
                     " -v --port virtual:" + printer + ",log=" + log + " --control \"$F\" --status-file \"$S\" " + bed + " " + args +
                     " " + quote(file) +
                     " & p=$!\n" + wait_for_fifo(fifo) +
-                    "paused() { for i in $(seq 1000); do grep -q '\"state\": \"paused\"' \"$S\" 2>/dev/null && return; "
-                    "sleep 0.01; done; }\n"
-                    "at_layer() { for i in $(seq 1000); do grep -q \"\\\"layer\\\": $1,\" \"$S\" 2>/dev/null && return; "
-                    "sleep 0.01; done; }\n" +
+                    "paused() { " + wait_for_lines("\"$S\"", {.match = quote("\"state\": \"paused\"")}) + "}\n" +
+                    "at_layer() { " + wait_for_lines("\"$S\"", {.match = "\"\\\"layer\\\": $1,\""}) + "}\n" +
                     script + "\nwait $p";
   PauseRun r;
   r.result = run(cmd);

@@ -117,6 +117,18 @@ std::string wait_until(const std::string& condition, int tries, double pause) {
   return fmt::format("for i in $(seq {}); do {} && break; sleep {:g}; done\n", tries, condition, pause);
 }
 
+std::string wait_for_lines(const std::string& file, const LinesWait& wait) {
+  std::string line = quote(tool_path("gctest-wait"));
+  auto option = [&line](const char* name, const std::string& word) {
+    if (!word.empty()) line += fmt::format(" {} {}", name, word);
+  };
+  option("--match", wait.match);
+  option("--after", wait.after);
+  option("--at-least", wait.at_least);
+  option("--while-alive", wait.while_alive);
+  return line + fmt::format(" --tries {} --every {:g} {} || :\n", wait.tries, wait.every, file);
+}
+
 std::string wait_for_fifo(const std::string& path) { return wait_until("[ -p " + quote(path) + " ]"); }
 
 std::string wait_for_link(const std::string& path) { return wait_until("[ -e " + quote(path) + " ]", 500); }

@@ -69,6 +69,22 @@ std::string quote(std::string_view arg);
 // times, `pause` seconds apart, and goes on once it holds (or after the
 // last try: the test's own checks then say what did not happen).
 std::string wait_until(const std::string& condition, int tries = 1000, double pause = 0.01);
+// A shell snippet that waits until `file` has `at_least` complete lines
+// (default 1) matching `match` (a basic regular expression, as grep's;
+// default: any line), counted from the first line matching `after` on
+// (which must be there, even for at_least 0), up
+// to `tries` x `every` seconds, and no longer than process `while_alive`
+// lives. Then the script goes on, as after wait_until. Every field but
+// the numbers is a shell word as the script writes it (quote() a literal);
+// empty: not given. One process (gctest-wait, support/gctest_wait.cpp)
+// reads what the file gained each turn, where a shell loop would start a
+// grep and a sleep.
+struct LinesWait {
+  std::string match = {}, after = {}, at_least = {}, while_alive = {};
+  int tries = 1000;
+  double every = 0.01;
+};
+std::string wait_for_lines(const std::string& file, const LinesWait& wait);
 // ... until gc-send made its control FIFO at `path` (up to 10 s): written
 // before, `echo pause > path` makes a regular file, which gc-send then
 // refuses (a loaded machine starts gc-send late).
