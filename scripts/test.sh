@@ -10,9 +10,6 @@
 # only (-gline-tables-only) and -O1 there: the sanitizers' reports keep file
 # and line, the build is lighter (README, "How long scripts/test.sh takes").
 #
-# The release suite's timing tests run alone; the rest of the suite runs
-# beside the sanitizer tree's build, which gets only the CPU the tests leave.
-#
 # ctest runs 2 x cores slots: a test that keeps a core busy takes two, one
 # of gc-send's tests (mostly waiting for the virtual printer) one
 # (tests/CMakeLists.txt, PROCESSORS).
@@ -31,36 +28,11 @@ generator() {
 
 cmake -S . -B build $(generator build) -DCMAKE_BUILD_TYPE=Release -DGCODE_WERROR=ON >/dev/null
 cmake --build build -j"$jobs"
-# The tests whose figures need a host with nothing else to do first
-# (label "timing", tests/timing_alone.cmake).
-ctest --test-dir build --output-on-failure -j"$slots" -L timing
+ctest --test-dir build --output-on-failure -j"$slots"
 
 CC=clang CXX=clang++ cmake -S . -B build-asan $(generator build-asan) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGCODE_WERROR=ON \
   -DGCODE_SANITIZE=ON -DGCODE_FUZZ=ON "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -gline-tables-only -DNDEBUG" >/dev/null
-# The sanitizer tree compiles at the lowest priority beside the rest of the
-# release suite, in the CPU time the suite leaves idle: its tests of gc-send
-# mostly wait for the virtual printer's simulated moves (about a fifth of
-# two cores idle). The tests keep their priority, and the build takes the
-# whole machine once they are done.
-# In its own process group (job control on for the launch), so that a
-# failed or interrupted suite stops the whole build: cmake, ninja and the
-# compilers. Not in a session of its own (setsid): Linux shares the CPU
-# between sessions first (autogroups), and the build would take half of it
-# whatever its nice value.
-set -m
-nice -n 19 cmake --build build-asan -j"$jobs" >build-asan/build.log 2>&1 &
-asan_build=$!
-set +m
-trap 'kill -- -"$asan_build" 2>/dev/null; true' EXIT
-trap 'exit 130' INT TERM
-ctest --test-dir build --output-on-failure -j"$slots" -LE timing
-echo "waiting for the sanitizer tree's build (build-asan/build.log)"
-if ! wait "$asan_build"; then
-  cat build-asan/build.log
-  exit 1
-fi
-trap - EXIT INT TERM
-tail -n 1 build-asan/build.log
+cmake --build build-asan -j"$jobs"
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build-asan --output-on-failure -j"$slots"
 
