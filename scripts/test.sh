@@ -10,14 +10,14 @@
 # only (-gline-tables-only) and -O1 there: the sanitizers' reports keep file
 # and line, the build is lighter (README, "How long scripts/test.sh takes").
 #
-# ctest runs 2 x cores slots: a test that keeps a core busy takes two, one
+# ctest runs 3 x cores slots: a test that keeps a core busy takes three, one
 # of gc-send's tests (mostly waiting for the virtual printer) one
 # (tests/CMakeLists.txt, PROCESSORS).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 jobs=$(nproc)
-slots=$((2 * jobs))
+slots=$((3 * jobs))
 
 # Ninja where the tree is new: it schedules every object of the build in one
 # queue, where make waits for a library before compiling what links it. A
