@@ -59,10 +59,6 @@ std::string numbered_count(const std::string& dir) {
   return "awk -F'\\t' '$2 >= 0' " + quote(dir + "/executed.log") + " | wc -l";
 }
 
-// The same lines, as a pattern for gctest::wait_for_lines: a number, not -1,
-// in the second column.
-std::string numbered_line() { return quote("^[^\t]*\t[0-9]"); }
-
 void require_every_command_once(const std::string& dir, const std::string& input) {
   auto executed = gctest::parse_executed_log(gctest::read_file(dir + "/executed.log"));
   auto expected = gctest::commands_of(gctest::read_file(input));
@@ -294,7 +290,7 @@ TEST_CASE("gc-send --resume inside a layer: the resumed session is in that layer
       killed_after("-q --port " + quote(port) + " --journal " + quote(journal) + " " + quote(input), 2, journal) +
       "n0=$(" + numbered_count(dir) + ")\n(" +
       gctest::wait_for_lines(quote(dir + "/executed.log"),
-                             {.match = numbered_line(), .at_least = "$((n0 + 20))", .tries = 60000, .every = 0.005}) +
+                             {.match = gctest::numbered_log_line(), .at_least = "$((n0 + 20))", .tries = 60000, .every = 0.005}) +
       "kill -USR1 $vp) &\n" +
       gc_send("--port " + quote(port) + " --resume " + quote(journal) + " " + quote(input)) +
       "; s=$?; kill $vp; wait $vp; exit $s";

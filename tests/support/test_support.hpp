@@ -85,6 +85,11 @@ struct LinesWait {
   double every = 0.01;
 };
 std::string wait_for_lines(const std::string& file, const LinesWait& wait);
+// The virtual printer's log lines of numbered commands (a number, not -1,
+// in the second column): the print's own, not gc-send's questions (M110,
+// M115, M114) or the pacer's moves of no length. A shell word, for
+// wait_for_lines' `match` or `grep -c`.
+std::string numbered_log_line();
 // ... until gc-send made its control FIFO at `path` (up to 10 s): written
 // before, `echo pause > path` makes a regular file, which gc-send then
 // refuses (a loaded machine starts gc-send late).
