@@ -121,9 +121,19 @@ TEST_CASE("gc-send: the built-in virtual printer, host commands kept back, summa
 
 TEST_CASE("gc-send: Ctrl-C stops, a second Ctrl-C sends M112", "[gc-send]") {
   std::string file = gctest::fixture_path("cura_cube_0.2_abs_zhop_skirt.gcode");
-  std::string script = quote(tool_path("gc-send")) + " --port virtual " + quote(file) +
-                       " & p=$!; sleep 0.5; kill -INT $p; sleep 0.1; kill -INT $p; wait $p";
+  std::string err = quote(gctest::temp_dir() + "/err");
+  // The second Ctrl-C once gc-send says it is cancelling: a fixed 0.1 s
+  // after the first came too late on a loaded machine, when the safe end
+  // had already finished (exit 0).
+  std::string script = quote(tool_path("gc-send")) + " --port virtual " + quote(file) + " 2>" + err +
+                       " & p=$!\nsleep 0.5; kill -INT $p\n" +
+                       gctest::wait_for_lines(err, {.match = "'press Ctrl-C again'",
+                                                    .while_alive = "$p",
+                                                    .tries = 5000,
+                                                    .every = 0.002}) +
+                       "kill -INT $p; wait $p; s=$?; cat " + err + " >&2; exit $s";
   auto r = run(script);
+  INFO(r.err);
   CHECK(r.status == 130);
   CHECK(r.err.find("emergency stop: M112 sent") != std::string::npos);
 }
