@@ -121,12 +121,17 @@ TEST_CASE("gc-send: the built-in virtual printer, host commands kept back, summa
 
 TEST_CASE("gc-send: Ctrl-C stops, a second Ctrl-C sends M112", "[gc-send]") {
   std::string file = gctest::fixture_path("cura_cube_0.2_abs_zhop_skirt.gcode");
-  std::string err = quote(gctest::temp_dir() + "/err");
-  // The second Ctrl-C once gc-send says it is cancelling: a fixed 0.1 s
-  // after the first came too late on a loaded machine, when the safe end
-  // had already finished (exit 0).
-  std::string script = quote(tool_path("gc-send")) + " --port virtual " + quote(file) + " 2>" + err +
-                       " & p=$!\nsleep 0.5; kill -INT $p\n" +
+  std::string dir = gctest::temp_dir();
+  std::string err = quote(dir + "/err"), log = quote(dir + "/executed.log");
+  // The first Ctrl-C once the printer has run 30 commands (heated at once,
+  // then moves in real time: the safe end's park takes seconds), the second
+  // once gc-send says it is cancelling. Fixed sleeps (0.5 s, then 0.1 s)
+  // failed on a loaded machine: the first came before the print had begun,
+  // or the second after the safe end had finished (exit 0 both times).
+  std::string script = quote(tool_path("gc-send")) + " --port virtual:heat-rate=1000,log=" + log + " " +
+                       quote(file) + " 2>" + err + " & p=$!\n" +
+                       gctest::wait_for_lines(log, {.at_least = "30", .while_alive = "$p", .tries = 5000, .every = 0.002}) +
+                       "kill -INT $p\n" +
                        gctest::wait_for_lines(err, {.match = "'press Ctrl-C again'",
                                                     .while_alive = "$p",
                                                     .tries = 5000,
