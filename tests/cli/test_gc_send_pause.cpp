@@ -212,8 +212,10 @@ void check_pause_now(double speed) {
     INFO("path after the request " << path << " mm, " << end - asked << " s");
     if (gctest::kTimingFiguresChecked) CHECK(path <= 3.2);
     // The planner was busy: a real measurement. (A printer faster than the
-    // file can have run dry while the pacer was learning its pace.)
-    if (speed == 1) CHECK(path > 0.2);
+    // file can have run dry while the pacer was learning its pace; under the
+    // sanitizers beside other tests, gc-send can feed it too late, 16.6 %
+    // starved and 0 mm once, where the 3.2 mm bound is not checked either.)
+    if (speed == 1 && gctest::kTimingFiguresChecked) CHECK(path > 0.2);
     // gc-send's figure is its model of the planner at the request, kept
     // from the answers as they arrive: exact when the host reads them in
     // time. Under the sanitizers beside other tests it reads them late,
