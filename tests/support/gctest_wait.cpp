@@ -74,7 +74,8 @@ class FileFollower {
       on_line(fresh.substr(begin, end - begin));
       begin = end + 1;
     }
-    consumed_tail_ += fresh.substr(0, begin);
+    std::size_t keep = std::min(begin, kTail);  // a first look can read megabytes
+    consumed_tail_.append(fresh, begin - keep, keep);
     if (consumed_tail_.size() > kTail) consumed_tail_.erase(0, consumed_tail_.size() - kTail);
     offset_ += begin;
     return true;
