@@ -26,12 +26,17 @@ generator() {
   if [ ! -f "$1/CMakeCache.txt" ] && command -v ninja >/dev/null; then echo "-GNinja"; fi
 }
 
-cmake -S . -B build $(generator build) -DCMAKE_BUILD_TYPE=Release -DGCODE_WERROR=ON >/dev/null
+# lld links the test programs 2 to 3 times faster than GNU ld (under the
+# sanitizers unit_tests 2.8 -> 0.9 s): some 40 links a run.
+linker=()
+if command -v ld.lld >/dev/null; then linker=(-DCMAKE_EXE_LINKER_FLAGS=-fuse-ld=lld); fi
+
+cmake -S . -B build $(generator build) -DCMAKE_BUILD_TYPE=Release -DGCODE_WERROR=ON "${linker[@]}" >/dev/null
 cmake --build build -j"$jobs"
 ctest --test-dir build --output-on-failure -j"$slots"
 
 CC=clang CXX=clang++ cmake -S . -B build-asan $(generator build-asan) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGCODE_WERROR=ON \
-  -DGCODE_SANITIZE=ON -DGCODE_FUZZ=ON "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -gline-tables-only -DNDEBUG" >/dev/null
+  "${linker[@]}" -DGCODE_SANITIZE=ON -DGCODE_FUZZ=ON "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -gline-tables-only -DNDEBUG" >/dev/null
 cmake --build build-asan -j"$jobs"
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build-asan --output-on-failure -j"$slots"
