@@ -7,6 +7,7 @@
 function(gcode_tool name)
   add_executable(${name} ${ARGN})
   target_link_libraries(${name} PRIVATE gcode_cli)
+  gcode_prefault(${name})
   install(TARGETS ${name} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
   set_property(GLOBAL APPEND PROPERTY GCODE_TOOLS ${name})
 
