@@ -2,9 +2,8 @@
 # into an executable the tests start many times (the tools, the test
 # programs): it spares each process some 2,300 page faults of LeakSanitizer's
 # scan at exit. Elsewhere it does nothing.
-if(GCODE_SANITIZE AND NOT TARGET gcode_sanitizer_prefault)
+if(GCODE_SANITIZE)
   add_library(gcode_sanitizer_prefault OBJECT ${CMAKE_CURRENT_LIST_DIR}/sanitizer_prefault.cpp)
-  set_target_properties(gcode_sanitizer_prefault PROPERTIES UNITY_BUILD OFF)
 endif()
 
 function(gcode_prefault target)

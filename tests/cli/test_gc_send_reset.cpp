@@ -220,7 +220,7 @@ TEST_CASE("gc-send --resume after kill -9: a reset in the resumed print comes ba
     std::string dir = gctest::temp_dir();
     const std::string log = quote(dir + "/executed.log");
     auto r = killed_then(dir, reset_pieces(), 1.5,
-                         "sleep 0.3; n0=$(grep -c " + gctest::numbered_log_line() + " " + log + ")\n(" +
+                         "sleep 0.3; n0=$(" + gctest::numbered_log_count(dir + "/executed.log") + ")\n(" +
                              gctest::wait_for_lines(log, {.match = gctest::numbered_log_line(),
                                                           .at_least = "$((n0 + " + std::to_string(after) + "))",
                                                           .tries = 150000,

@@ -55,9 +55,7 @@ std::string killed_after(const std::string& args, double seconds, const std::str
 
 // A shell command that counts the numbered lines the printer executed
 // (M114 and the like are not).
-std::string numbered_count(const std::string& dir) {
-  return "grep -c " + gctest::numbered_log_line() + " " + quote(dir + "/executed.log");
-}
+std::string numbered_count(const std::string& dir) { return gctest::numbered_log_count(dir + "/executed.log"); }
 
 void require_every_command_once(const std::string& dir, const std::string& input) {
   auto executed = gctest::parse_executed_log(gctest::read_file(dir + "/executed.log"));

@@ -131,6 +131,8 @@ std::string wait_for_lines(const std::string& file, const LinesWait& wait) {
 
 std::string numbered_log_line() { return quote("^[^\t]*\t[0-9]"); }
 
+std::string numbered_log_count(const std::string& log) { return "grep -c " + numbered_log_line() + " " + quote(log); }
+
 std::string wait_for_fifo(const std::string& path) { return wait_until("[ -p " + quote(path) + " ]"); }
 
 std::string wait_for_link(const std::string& path) { return wait_until("[ -e " + quote(path) + " ]", 500); }

@@ -90,6 +90,8 @@ std::string wait_for_lines(const std::string& file, const LinesWait& wait);
 // M115, M114) or the pacer's moves of no length. A shell word, for
 // wait_for_lines' `match` or `grep -c`.
 std::string numbered_log_line();
+// A shell command that prints how many such lines the log at `log` holds.
+std::string numbered_log_count(const std::string& log);
 // ... until gc-send made its control FIFO at `path` (up to 10 s): written
 // before, `echo pause > path` makes a regular file, which gc-send then
 // refuses (a loaded machine starts gc-send late).
