@@ -156,10 +156,14 @@ std::string wait_paused(const std::string& status) {
   return gctest::wait_for_lines(quote(status), {.match = quote("\"paused\""), .while_alive = "$gs"});
 }
 
-// ... killed after `seconds`.
+// ... killed `seconds` after the printer acknowledged its first line (by
+// the journal): a loaded machine can take a second to start gc-send, and a
+// gc-send killed before its journal holds anything leaves nothing to resume.
 gctest::RunResult killed_then(const std::string& dir, const std::string& input, double seconds,
                               const std::string& then, const std::string& resume_args = "") {
-  return killed_when(dir, input, "sleep " + std::to_string(seconds), then, resume_args);
+  const std::string started = gctest::wait_for_lines(quote(dir + "/print.journal"),
+                                                     {.match = "'^A '", .while_alive = "$gs", .tries = 5000, .every = 0.002});
+  return killed_when(dir, input, started + "sleep " + std::to_string(seconds), then, resume_args);
 }
 
 // gc-send (`send_args`, a status file and a control FIFO in `dir`) prints
@@ -234,8 +238,8 @@ TEST_CASE("gc-send --resume after kill -9: a reset in the resumed print comes ba
   }
 }
 
-TEST_CASE("gc-send --resume killed the moment its journal replaced the old one, then a printer reset: the next "
-          "resume goes back to where that one went on, nothing redone",
+TEST_CASE("gc-send --resume killed as its new journal lands, then a printer reset: the next resume goes back to "
+          "where that one went on, nothing redone",
           "[gc-send][reset][resume]") {
   auto expected = gctest::commands_of(gctest::read_file(reset_pieces()));
   std::string dir = gctest::temp_dir();
