@@ -126,28 +126,40 @@ void Subdivider::line(const TrackedLine& t, Emitter& out) {
     if (line.kind != CommandKind::Standard || line.letter == 'G')
       warn(t.raw.number, "cannot read this line; passed through unchanged");
   } else if (t.move.kind == MoveKind::Linear || t.move.kind == MoveKind::Arc) {
-    Plan plan;
-    bool selected = selection_ == nullptr || selection_->selects(t);
-    if (selected && plan_move(t, plan)) {
-      write_pieces(t, plan, out);
-      return;
+    PieceLimit limit;
+    if ((selection_ == nullptr || selection_->selects(t)) && wants_cut(t, limit)) {
+      // Made only here: a Plan is 300 bytes to clear, and most moves of a
+      // file stay whole (gc-subdivide --max 1000 on the bench's 160 MB file:
+      // 0.54 -> 0.47 s).
+      Plan plan;
+      if (plan_move(t, limit, plan)) {
+        write_pieces(t, plan, out);
+        return;
+      }
     }
   }
   out.pass(t);
 }
 
-bool Subdivider::plan_move(const TrackedLine& t, Plan& plan) {
+bool Subdivider::wants_cut(const TrackedLine& t, PieceLimit& limit) const {
   const Line& line = t.line;
   const Move& move = t.move;
   bool arc = move.kind == MoveKind::Arc;
   if (move.ignored) return false;
   if (arc ? !options_.split_arcs : move.xy_length <= 0) return false;  // pure Z or E moves stay whole
   bool limited = options_.split_travel || !move.travel;
-  bool rate_won = false;
-  double limit = limited ? options_.piece_limit(move.feedrate, &rate_won) : 0;
-  if (!arc && !(move.length > limit && limit > 0)) return false;
+  limit.mm = limited ? options_.piece_limit(move.feedrate, &limit.rate_won) : 0;
+  if (!arc && !(move.length > limit.mm && limit.mm > 0)) return false;
   // A numbered or checksummed line cannot be cut without breaking its checksum.
-  if (line.has_line_number || line.has_checksum || line.command.size() > 16) return false;
+  return !(line.has_line_number || line.has_checksum || line.command.size() > 16);
+}
+
+bool Subdivider::plan_move(const TrackedLine& t, const PieceLimit& piece_limit, Plan& plan) {
+  const Line& line = t.line;
+  const Move& move = t.move;
+  const bool arc = move.kind == MoveKind::Arc;
+  const double limit = piece_limit.mm;
+  const bool rate_won = piece_limit.rate_won;
   if (!plan_axes(t, plan) || !plan_words(t, plan)) return false;
   int finest = plan_decimals(t, plan);
   if (finest < 0) return false;

@@ -80,8 +80,15 @@ class Subdivider : public Stage {
 
  private:
   struct Plan;
+  // A move's longest piece (mm) and whether --max-rate set it.
+  struct PieceLimit {
+    double mm = 0;
+    bool rate_won = false;
+  };
+  // Whether a move is to be cut at all (the cheap checks, before a Plan).
+  bool wants_cut(const TrackedLine& t, PieceLimit& limit) const;
   // plan_move's steps, in its order.
-  bool plan_move(const TrackedLine& t, Plan& plan);
+  bool plan_move(const TrackedLine& t, const PieceLimit& limit, Plan& plan);
   bool plan_axes(const TrackedLine& t, Plan& plan);
   bool plan_words(const TrackedLine& t, Plan& plan);
   int plan_decimals(const TrackedLine& t, Plan& plan) const;
