@@ -16,7 +16,9 @@ int count_layers(int fd, const LayerMarkers& markers, int e_relative) {
 }
 
 Filter::Filter(const FilterOptions& options, PipelineOptions pipeline)
-    : options_(options), markers_(options.markers()), input_(options.file), pipeline_(markers_, pipeline) {}
+    : options_(options), markers_(options.markers()), input_(options.file), pipeline_(markers_, pipeline) {
+  input_.widen_pipe();
+}
 
 bool Filter::e_mode() {
   if (e_relative_ >= 0) return e_relative_ == 1;
@@ -134,6 +136,7 @@ void Filter::run() {
 void Filter::write(const std::function<void()>& verify) {
   e_mode();
   file_.emplace(options_.in_place ? std::string() : options_.output, options_.in_place ? options_.file : std::string());
+  file_->widen_pipe();
   buffer_.emplace(file_->fd());
   writer_.emplace(*buffer_);
   pipeline_.add(*writer_);

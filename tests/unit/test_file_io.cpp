@@ -1,7 +1,7 @@
 // FILE, '-', -o and -i (core/file_io.hpp): readable messages for what cannot be
 // opened, a pipe made seekable by spooling it, an in-place temp file beside
 // FILE that replaces it only on commit (with FILE's permissions) and is
-// removed otherwise.
+// removed otherwise; a pipe widened to 1 MB when asked.
 #include <catch2/catch.hpp>
 
 #include <fcntl.h>
@@ -118,4 +118,49 @@ TEST_CASE("io: -i replaces FILE on commit only, keeping its permissions", "[io]"
   struct stat st {};
   REQUIRE(::stat(path.c_str(), &st) == 0);
   CHECK((st.st_mode & 07777) == 0640);
+}
+
+TEST_CASE("io: widen_pipe asks for a 1 MB pipe, so the filters of a pipeline run side by side", "[io]") {
+  int ends[2];
+  REQUIRE(::pipe(ends) == 0);
+  REQUIRE(::fcntl(ends[0], F_GETPIPE_SZ) == 65536);  // Linux's default
+  {
+    InputFile in("/proc/self/fd/" + std::to_string(ends[0]));  // a named pipe or <(...)
+    CHECK(::fcntl(ends[0], F_GETPIPE_SZ) == 65536);  // only when asked: gc-send keeps its pipe for a day
+    in.widen_pipe();
+    CHECK(::fcntl(ends[0], F_GETPIPE_SZ) == 1 << 20);
+  }
+  int again[2];
+  REQUIRE(::pipe(again) == 0);
+  {
+    OutputFile out("/proc/self/fd/" + std::to_string(again[1]), "");
+    out.widen_pipe();
+    CHECK(::fcntl(again[1], F_GETPIPE_SZ) == 1 << 20);
+  }
+  // Standard input and output, as in a pipeline.
+  int saved_in = ::dup(0), saved_out = ::dup(1);
+  int third[2], fourth[2];
+  REQUIRE(::pipe(third) == 0);
+  REQUIRE(::pipe(fourth) == 0);
+  ::dup2(third[0], 0);
+  ::dup2(fourth[1], 1);
+  {
+    InputFile in("-");
+    in.widen_pipe();
+    OutputFile out("", "");
+    out.widen_pipe();
+  }
+  const int in_size = ::fcntl(third[0], F_GETPIPE_SZ), out_size = ::fcntl(fourth[1], F_GETPIPE_SZ);
+  ::dup2(saved_in, 0);
+  ::dup2(saved_out, 1);
+  CHECK(in_size == 1 << 20);
+  CHECK(out_size == 1 << 20);
+  // A file is no pipe: nothing to do, nothing goes wrong.
+  std::string path = gctest::temp_dir() + "/plain.gcode";
+  gctest::write_file(path, "G28\n");
+  InputFile plain(path);
+  plain.widen_pipe();
+  CHECK(read_all(plain.fd()) == "G28\n");
+  for (int fd : {ends[0], ends[1], again[0], again[1], third[0], third[1], fourth[0], fourth[1], saved_in, saved_out})
+    ::close(fd);
 }

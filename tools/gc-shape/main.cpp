@@ -31,6 +31,7 @@ int write(Options& o, gcode::cli::Tool& tool) {
   if (!o.end.empty()) o.gcode.end_code = text_of(o.gcode.end_name = o.end, "--end");
   const procedural::ShapePath path(o.shape);
   gcode::OutputFile file(o.io.output, "");
+  file.widen_pipe();  // gc-shape | gc-deform
   std::optional<gcode::OutputBuffer> out(file.fd());
   const procedural::ShapeGcodeStats stats =
       procedural::write_shape_gcode(path, o.gcode, [&](std::string_view chunk) { out->write(chunk); });

@@ -17,6 +17,12 @@ namespace gcode {
 
 namespace {
 std::string errno_message(const std::string& what) { return what + ": " + std::strerror(errno); }
+
+// See InputFile::widen_pipe.
+void widen_pipe_fd(int fd) {
+  struct stat st {};
+  if (::fstat(fd, &st) == 0 && S_ISFIFO(st.st_mode)) (void)::fcntl(fd, F_SETPIPE_SZ, 1 << 20);
+}
 }  // namespace
 
 InputFile::InputFile(const std::string& path) {
@@ -71,6 +77,8 @@ void InputFile::rewind() {
   if (::lseek(fd_, 0, SEEK_SET) < 0) throw std::runtime_error(errno_message(name_));
 }
 
+void InputFile::widen_pipe() { widen_pipe_fd(fd_); }
+
 InputFile::~InputFile() {
   if (owned_) ::close(fd_);
 }
@@ -91,6 +99,8 @@ OutputFile::OutputFile(const std::string& path, const std::string& in_place_of) 
   if (fd_ < 0) throw std::runtime_error(errno_message(path));
   owned_ = true;
 }
+
+void OutputFile::widen_pipe() { widen_pipe_fd(fd_); }
 
 OutputFile::~OutputFile() {
   if (owned_) ::close(fd_);
