@@ -49,7 +49,9 @@ void Emitter::deliver_new(std::string_view text, std::string_view ending, LineOr
   if (next_ == nullptr) return;
   text_.assign(text.data(), text.size());
   RawLine raw{text_, ending, input_line(), from != nullptr ? from->raw.offset : 0};
-  Line line = parse_ ? Line::parse(text_) : Line();
+  // Not Line(): value-initialised, it clears all 24 word slots (896 bytes,
+  // a rep stos for every new line); an empty parse sets only the fields.
+  Line line = Line::parse(parse_ ? std::string_view(text_) : std::string_view());
   const Region region = this->region();
   const int layer = layer_index(), feature = this->feature();
   if (!track_) {
