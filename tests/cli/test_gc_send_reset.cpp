@@ -161,9 +161,8 @@ std::string wait_paused(const std::string& status) {
 // gc-send killed before its journal holds anything leaves nothing to resume.
 gctest::RunResult killed_then(const std::string& dir, const std::string& input, double seconds,
                               const std::string& then, const std::string& resume_args = "") {
-  const std::string started = gctest::wait_for_lines(quote(dir + "/print.journal"),
-                                                     {.match = "'^A '", .while_alive = "$gs", .tries = 5000, .every = 0.002});
-  return killed_when(dir, input, started + "sleep " + std::to_string(seconds), then, resume_args);
+  return killed_when(dir, input, gctest::wait_for_journal_start(dir + "/print.journal", "$gs") + "sleep " +
+                                     std::to_string(seconds), then, resume_args);
 }
 
 // gc-send (`send_args`, a status file and a control FIFO in `dir`) prints

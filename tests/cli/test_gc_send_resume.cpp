@@ -47,8 +47,7 @@ std::string gc_send(const std::string& args) { return quote(tool_path("gc-send")
 std::string killed_after(const std::string& args, double seconds, const std::string& journal = "") {
   // Counted from the journal's first acknowledgement when one is named: a
   // loaded machine can take a second to start gc-send and open the printer.
-  const std::string started =
-      journal.empty() ? "" : gctest::wait_for_lines(quote(journal), {.match = "'^A '", .tries = 5000, .every = 0.002});
+  const std::string started = journal.empty() ? "" : gctest::wait_for_journal_start(journal);
   return gc_send(args) + " 2>/dev/null & gs=$!\n" + started + "sleep " + std::to_string(seconds) +
          "\nkill -9 $gs; wait $gs 2>/dev/null\n";
 }

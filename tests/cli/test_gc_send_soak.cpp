@@ -63,7 +63,7 @@ std::string supervisor(const std::string& dir, const std::string& input, const s
          // exec: $gs is gc-send itself, not a subshell around it.
          "  eval \"exec $cmd\" 2>" + quote(err) + ".$session & gs=$!\n"
          "  if [ $kills -gt 0 ]; then\n"
-         "    (" + gctest::wait_for_lines(quote(journal), {.match = "'^A '", .tries = 5000, .every = 0.002}) + "sleep " +
+         "    (" + gctest::wait_for_journal_start(journal) + "sleep " +
          std::to_string(kill_after) + "; kill -9 $gs 2>/dev/null) & killer=$!\n"
          "  fi\n"
          "  wait $gs; s=$?\n"

@@ -133,6 +133,10 @@ std::string numbered_log_line() { return quote("^[^\t]*\t[0-9]"); }
 
 std::string numbered_log_count(const std::string& log) { return "grep -c " + numbered_log_line() + " " + quote(log); }
 
+std::string wait_for_journal_start(const std::string& journal, const std::string& while_alive) {
+  return wait_for_lines(quote(journal), {.match = "'^A '", .while_alive = while_alive, .tries = 5000, .every = 0.002});
+}
+
 std::string wait_for_fifo(const std::string& path) { return wait_until("[ -p " + quote(path) + " ]"); }
 
 std::string wait_for_link(const std::string& path) { return wait_until("[ -e " + quote(path) + " ]", 500); }

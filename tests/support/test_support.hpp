@@ -92,6 +92,11 @@ std::string wait_for_lines(const std::string& file, const LinesWait& wait);
 std::string numbered_log_line();
 // A shell command that prints how many such lines the log at `log` holds.
 std::string numbered_log_count(const std::string& log);
+// ... until gc-send's journal at `journal` holds its first acknowledged
+// line (up to 10 s; no longer than process `while_alive` lives, if given):
+// a loaded machine can take a second to start gc-send and open the printer,
+// and a kill timed from before that leaves nothing to resume.
+std::string wait_for_journal_start(const std::string& journal, const std::string& while_alive = "");
 // ... until gc-send made its control FIFO at `path` (up to 10 s): written
 // before, `echo pause > path` makes a regular file, which gc-send then
 // refuses (a loaded machine starts gc-send late).
