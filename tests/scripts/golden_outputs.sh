@@ -54,8 +54,7 @@ trap 'rm -rf "$tmp"' EXIT
 run() {
   local file=$1 line=$2 status=0
   local words=${line//FILE/$file}
-  # shellcheck disable=SC2086
-  set -f
+  set -f  # split the run into words, without globbing its '*'
   # shellcheck disable=SC2086
   set -- $words
   set +f
