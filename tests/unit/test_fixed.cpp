@@ -140,6 +140,12 @@ TEST_CASE("fixed: junk saturates instead of wrapping", "[fixed]") {
   CHECK(dec(std::numeric_limits<std::int64_t>::max(), 0) == top);
   // Still in range, still exact: 4e9 mm.
   CHECK(Fixed::from_int(4'000'000'000) + Fixed::from_int(1) == Fixed::from_int(4'000'000'001));
+  // Either side of 2^32, where from_decimal leaves its unchecked inline path.
+  const std::int64_t edge = std::int64_t{1} << 32;
+  for (std::int64_t m : {edge - 1, edge, edge + 1, -edge + 1, -edge, -edge - 1})
+    for (int d = 0; d <= 9; ++d) CHECK(dec(m, d).units() == m * Fixed::kPowersOf10[9 - d]);
+  CHECK(dec(std::int64_t{4'700'000'000}, 0) == top);  // 4.7e18 units: past kMax
+  CHECK(dec(-std::int64_t{4'700'000'000}, 0) == -top);
   char b[gcode::kMaxNumberChars];
   CHECK(top.format(9, b) < gcode::kMaxNumberChars);
   CHECK((-top).format(9, b) < gcode::kMaxNumberChars);

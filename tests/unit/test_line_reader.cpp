@@ -4,6 +4,8 @@
 
 #include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "gcode/core/line_reader.hpp"
 #include "gcode/core/output_buffer.hpp"
@@ -76,6 +78,45 @@ TEST_CASE("a 10 MB line comes through whole", "[line_reader]") {
   std::size_t n = 0;
   CHECK(roundtrip(data, 1 << 16, &n) == data);
   CHECK(n == 3);
+}
+
+TEST_CASE("lines of every length near the 16- and 64-byte scan steps split where a plain search does",
+          "[line_reader][property]") {
+  // The splitter looks for a line's end 16 bytes at a time, then hands long
+  // lines to memchr: every length from 0 to 150, each with LF and with CRLF,
+  // at every alignment a growing prefix gives.
+  std::string data;
+  for (std::size_t len = 0; len <= 150; ++len) {
+    data.append(std::string(len, static_cast<char>('a' + len % 26))).append("\n");
+    data.append(std::string(len, 'r')).append("\r\n");
+  }
+  data.append("\r");  // a last line that is a lone CR, no newline
+  std::vector<std::pair<std::string, std::string>> expected;
+  for (std::size_t at = 0; at < data.size();) {
+    std::size_t nl = data.find('\n', at);
+    if (nl == std::string::npos) {
+      expected.emplace_back(data.substr(at), "");
+      break;
+    }
+    std::size_t text_end = nl > at && data[nl - 1] == '\r' ? nl - 1 : nl;
+    expected.emplace_back(data.substr(at, text_end - at), data.substr(text_end, nl + 1 - text_end));
+    at = nl + 1;
+  }
+  for (std::size_t block : {16u, 37u, 64u, 1000u, 1u << 18}) {
+    gcode::LineSplitter splitter(block);
+    splitter.append(data);
+    splitter.end_of_input();
+    gcode::RawLine line;
+    std::size_t i = 0;
+    while (splitter.next(line)) {
+      REQUIRE(i < expected.size());
+      CHECK(line.text == expected[i].first);
+      CHECK(line.ending == expected[i].second);
+      ++i;
+    }
+    CHECK(i == expected.size());
+    CHECK(roundtrip(data, block) == data);
+  }
 }
 
 TEST_CASE("binary junk, NUL bytes and invalid UTF-8 pass through", "[line_reader][property]") {

@@ -18,6 +18,7 @@ std::int64_t divide_rounded(std::int64_t a, std::int64_t b) {
 }  // namespace
 
 Fixed Fixed::from_decimal_slow(std::int64_t mantissa, int decimals) {
+  if (decimals >= 0 && decimals <= kDecimals) return from_units(mul_sat(mantissa, kPowersOf10[kDecimals - decimals]));
   if (decimals < 0) {
     // mantissa x 10^-decimals: whole tens first, saturating like the rest.
     std::int64_t whole = mantissa;

@@ -213,10 +213,7 @@ void track_lift(MachineState& s, Move& m) {
 }  // namespace
 
 Move MachineState::apply(const Line& line) {
-  Move m;
-  m.start = position;
-  m.end = position;
-  m.feedrate = feedrate;
+  Move m(position, feedrate);
   if (line.kind != CommandKind::Standard) return m;
   if (line.letter == 'T') {
     tool = line.number;

@@ -49,8 +49,13 @@ class Fixed {
   static constexpr Fixed from_units(std::int64_t units) { return Fixed(clamp(units)); }
   // mantissa x 10^-decimals, as a word is written ("-.80": -80, 2). Exact
   // for up to nine decimals; more are rounded half away from zero.
-  static Fixed from_decimal(std::int64_t mantissa, int decimals) {
-    if (decimals >= 0 && decimals <= kDecimals) return from_units(mul_sat(mantissa, kPowersOf10[kDecimals - decimals]));
+  // Inline for what slicers write: a mantissa below 2^32 times 10^9 stays far
+  // inside kMax, so it needs no saturation check (callgrind: the check and
+  // the call were 5 % of a full pass's instructions).
+  [[gnu::always_inline]] static Fixed from_decimal(std::int64_t mantissa, int decimals) {
+    if (static_cast<std::uint64_t>(mantissa + kSmall) < 2 * static_cast<std::uint64_t>(kSmall) && decimals >= 0 &&
+        decimals <= kDecimals)
+      return Fixed(mantissa * kPowersOf10[kDecimals - decimals]);
     return from_decimal_slow(mantissa, decimals);
   }
   // Rounded half away from zero to 10^-9; NaN is 0, infinities clamp.
@@ -81,6 +86,7 @@ class Fixed {
   friend constexpr auto operator<=>(Fixed a, Fixed b) { return a.units_ <=> b.units_; }
 
  private:
+  static constexpr std::int64_t kSmall = std::int64_t{1} << 32;  // x 10^9 stays below kMax
   static Fixed from_decimal_slow(std::int64_t mantissa, int decimals);
   constexpr explicit Fixed(std::int64_t units) : units_(units) {}
   static constexpr std::int64_t clamp(std::int64_t u) { return u > kMax ? kMax : (u < -kMax ? -kMax : u); }

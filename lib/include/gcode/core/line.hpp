@@ -34,13 +34,13 @@ struct Word {
 
   // In the units written (no inch conversion); bit for bit what parsing the
   // text gives.
-  double value() const {
+  [[gnu::always_inline]] double value() const {
     if (plain && mantissa < detail::kExactDouble && mantissa > -detail::kExactDouble)
       return static_cast<double>(mantissa) / detail::kPow10[decimals];
     return value_slow();
   }
   // The exact decimal (rounded only beyond nine decimals).
-  Fixed fixed() const { return plain ? Fixed::from_decimal(mantissa, decimals) : fixed_slow(); }
+  [[gnu::always_inline]] Fixed fixed() const { return plain ? Fixed::from_decimal(mantissa, decimals) : fixed_slow(); }
 
  private:
   double value_slow() const;

@@ -41,6 +41,12 @@ enum class MoveKind : std::uint8_t {
 
 // What one line did to the machine.
 struct Move {
+  Move() = default;
+  // Standing at `at` with feed rate `feed`: what every line starts from.
+  // Built field by field: value-initialised and then overwritten, the 112
+  // bytes were cleared with a rep stos on every line.
+  Move(const Vec4& at, double feed) : start(at), end(at), feedrate(feed) {}
+
   MoveKind kind = MoveKind::None;
   Vec4 start;                 // file coordinates before the line (E: the E coordinate)
   Vec4 end;                   // after the line
