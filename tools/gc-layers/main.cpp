@@ -23,9 +23,10 @@ std::string no_such_layer(int layer, gcode::cli::Filter& run, int layers) {
   return fmt::format("layer {} does not exist: {} has {} layers", layer, run.input().name(), layers);
 }
 
-void check_has_layers(const gcode::LayerTable& table, gcode::cli::Filter& run) {
-  if (table.total_bytes() == 0) throw InputError(run.input().name() + ": empty input");
-  if (table.layers().empty()) throw InputError(run.input().name() + ": no extrusion found (is this a print file?)");
+void check_has_layers(gcode::cli::Filter& run) {
+  if (run.pipeline().bytes_read() == 0) throw InputError(run.input().name() + ": empty input");
+  if (run.pipeline().tracker().layer_count() == 0)
+    throw InputError(run.input().name() + ": no extrusion found (is this a print file?)");
 }
 
 // --svg / --svg-sheet: the pictures, to the path(s) of --svg-out (or stdout).
@@ -56,8 +57,10 @@ int run(Options& o, gcode::Diagnostics& diag) {
   const gcode::PrintArea printer = gcode::printer_facts(run.input().fd());
   if (o.filament_diameter == 0) o.filament_diameter = printer.has_filament_diameter ? printer.filament_diameter : 1.75;
 
-  gcode::LayerTable table;
-  run.add(table);
+  // The table of every layer is for the reports; a cut needs only the count
+  // (the tracker's), and leaving the table out is 4 % of a cut's work.
+  std::optional<gcode::LayerTable> table;
+  if (!o.cutting()) run.add(table.emplace());
   std::optional<gcode::LayerTimer> timer;
   if (o.time || picture_range) {
     gcode::EstimatorOptions estimate;
@@ -73,7 +76,7 @@ int run(Options& o, gcode::Diagnostics& diag) {
     run.add(*drawer);
   }
   std::optional<gcode::LayerExtractor> extractor;
-  auto layers = [&] { return static_cast<int>(table.layers().size()); };
+  auto layers = [&] { return run.pipeline().tracker().layer_count(); };
   if (o.cutting()) {
     gcode::ExtractOptions extract;
     extract.note_prefix = "gc-layers: ";
@@ -82,7 +85,7 @@ int run(Options& o, gcode::Diagnostics& diag) {
         run.pipeline().precision(), extract);
     run.add(*extractor);
     run.write([&] {
-      check_has_layers(table, run);
+      check_has_layers(run);
       if (range && range->highest_named() > layers()) throw InputError(no_such_layer(range->highest_named(), run, layers()));
       if (extractor->layers_written() == 0) throw InputError("no layer matches the selection");
     });
@@ -90,7 +93,7 @@ int run(Options& o, gcode::Diagnostics& diag) {
     return 0;
   }
   run.run();
-  check_has_layers(table, run);
+  check_has_layers(run);
   if (timer)
     for (const std::string& line : timer->estimator().limits().describe()) diag.info(line);
   if (drawer) {
@@ -100,14 +103,14 @@ int run(Options& o, gcode::Diagnostics& diag) {
   }
   if (o.where > 0) {
     if (o.where > layers()) throw InputError(no_such_layer(o.where, run, layers()));
-    const gcode::LayerRow& r = table.layers()[static_cast<std::size_t>(o.where - 1)];
+    const gcode::LayerRow& r = table->layers()[static_cast<std::size_t>(o.where - 1)];
     fmt::print("{} {} {} {}\n", r.first_line, r.last_line, r.byte_begin, r.byte_end);
     return 0;
   }
   const gcode::LayerTracker& tracker = run.pipeline().tracker();
   gcode::ReportOptions report{run.input().name(), o.density, o.filament_diameter, tracker.mode()};
   if (timer) report.times = &timer->times();
-  std::string text = o.json ? gcode::layer_table_json(table, tracker, report) : gcode::layer_table_text(table, tracker, report);
+  std::string text = o.json ? gcode::layer_table_json(*table, tracker, report) : gcode::layer_table_text(*table, tracker, report);
   gcode::cli::write_output_file("", [&](gcode::OutputBuffer& out) { out.write(text); });
   return 0;
 }

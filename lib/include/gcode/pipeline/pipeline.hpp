@@ -85,6 +85,8 @@ class Pipeline : private LayerSink {
   bool finished() const { return finished_; }
   // Input read and not yet processed (what read_header/read_ahead buffered).
   std::string_view buffered() const { return splitter_.pending(); }
+  // Bytes of input read so far.
+  std::uint64_t bytes_read() const { return splitter_.bytes_received(); }
 
  private:
   void on_layer(const LayerInfo& layer, const MachineState& before) override;
