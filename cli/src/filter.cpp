@@ -85,6 +85,10 @@ LayerSelection Filter::selection(const SelectionText& text) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
+  // --types names the file must have: checked before a byte goes out, or a
+  // wrong name would first copy the whole file to standard output and only
+  // then fail. One extra read of the input, for this option only.
+  if (!s.types().empty()) check_types(s.types(), scan().features);
   if (s.needs_total()) s.set_total(count_layers());
   s.bind(pipeline_.tracker());
   return s;

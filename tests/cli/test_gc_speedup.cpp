@@ -377,10 +377,19 @@ TEST_CASE("speedup bad input gives a clear error and exit status 2 and leaves th
     CHECK(read_file(file) == text);
     CHECK(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()) == 1);
   }
-  // A file without ;TYPE: comments says so.
+  // A file without ;TYPE: comments says so, before anything goes out: to
+  // standard output from a pipe, nothing at all.
   auto none = speedup("--factor 2 --types FILL", read_file(fixture_path("slic3r_cube_0.2_abs_reprap_skirt.gcode")));
   CHECK(none.status == 2);
   CHECK(none.err.find("the file has no ;TYPE: comments") != std::string::npos);
+  CHECK(none.out.empty());
+  auto unknown = speedup("--factor 2 --types bridge", text);
+  CHECK(unknown.status == 2);
+  CHECK(unknown.err.find("no feature 'bridge'") != std::string::npos);
+  CHECK(unknown.out.empty());
+  auto named = speedup("--factor 2 --types bridge " + quote(file));
+  CHECK(named.status == 2);
+  CHECK(named.out.empty());
   CHECK(speedup("--version").out.rfind("gc-speedup ", 0) == 0);
 }
 

@@ -49,7 +49,9 @@ class Filter {
   // count_layers does, and goes back to its start.
   InputScan scan();
   // Parses a selection and, when a range counts from the end, counts the
-  // layers first. Throws UsageError when it does not parse.
+  // layers first; with --types, reads the file's features first and throws
+  // UsageError for a name it does not have (before any output). Throws
+  // UsageError when it does not parse.
   LayerSelection selection(const SelectionText& text);
   // After the run, what a selection found: --types names that matched no
   // feature of the input are a usage error that lists the names it has;
