@@ -53,8 +53,10 @@ class Fixed {
   // inside kMax, so it needs no saturation check (callgrind: the check and
   // the call were 5 % of a full pass's instructions).
   [[gnu::always_inline]] static Fixed from_decimal(std::int64_t mantissa, int decimals) {
-    if (static_cast<std::uint64_t>(mantissa + kSmall) < 2 * static_cast<std::uint64_t>(kSmall) && decimals >= 0 &&
-        decimals <= kDecimals)
+    // The range test in unsigned arithmetic, where a mantissa near the
+    // int64 limits wraps instead of overflowing.
+    constexpr auto small = static_cast<std::uint64_t>(kSmall);
+    if (static_cast<std::uint64_t>(mantissa) + small < 2 * small && decimals >= 0 && decimals <= kDecimals)
       return Fixed(mantissa * kPowersOf10[kDecimals - decimals]);
     return from_decimal_slow(mantissa, decimals);
   }
