@@ -17,6 +17,7 @@
 #include "gcode/core/line.hpp"
 #include "gcode/core/machine_state.hpp"
 #include "gcode/serial/journal.hpp"
+#include "gcode/serial/journal_point.hpp"
 #include "pty_run.hpp"
 #include "reset_check.hpp"
 #include "test_support.hpp"
@@ -262,8 +263,20 @@ TEST_CASE("gc-send --resume killed as its new journal lands, then a printer rese
   CHECK(killed.acknowledged > 0);
   CHECK(r.err.find("resuming: the printer reset since the print stopped (it greeted again); going back to input "
                    "line ") != std::string::npos);
-  // The second run's M400 had drained the printer: what ran before is not printed twice.
-  CHECK(r.err.find(", 0 moves (0.0 mm) may print twice") != std::string::npos);
+  // The second run's M400 had drained the printer: what ran before is not
+  // printed twice. That holds when the kill came before the printer
+  // acknowledged a line past the drained one; a kill the shell's poll made
+  // late (a loaded machine, a sanitizer build) lets moves through, and those
+  // may print twice, as the message then says.
+  std::uint64_t drained = 0;
+  for (const gcode::serial::JournalEntry& e : killed.entries)
+    if (gcode::serial::is_drained(e.point)) drained = e.n;
+  CHECK(drained > 0);
+  if (killed.acknowledged <= drained) {
+    CHECK(r.err.find(", 0 moves (0.0 mm) may print twice") != std::string::npos);
+  } else {
+    CHECK(r.err.find(" may print twice") != std::string::npos);
+  }
   CHECK(require_resumed(gctest::read_file(dir + "/executed.log"), expected).resets == 1);
 }
 
