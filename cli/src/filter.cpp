@@ -65,14 +65,15 @@ class LayerLister : public Stage {
 
 }  // namespace
 
-InputScan Filter::scan() {
+const InputScan& Filter::scan() {
+  if (scanned_) return *scanned_;
   input_.make_seekable();
   LayerLister lister;
   Pipeline reading(markers_);
   reading.add(lister);
   reading.run(input_.fd());
   input_.rewind();
-  InputScan found;
+  InputScan& found = scanned_.emplace();
   found.layers = std::move(lister.layers);
   for (int f = 0; f < reading.tracker().feature_count(); ++f) found.features.push_back(reading.tracker().feature_name(f));
   return found;

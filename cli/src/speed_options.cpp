@@ -81,8 +81,8 @@ void resolve_speed_from_input(SpeedToolOptions& o, Filter& run, const LayerSelec
   SpeedOptions& s = o.speed;
   if (s.ramp) {
     // The ramp runs across the region's layers: know them before writing.
-    InputScan scan = run.scan();
-    check_types(where.types(), scan.features);
+    // The selection read the file already when it names --types.
+    const InputScan& scan = run.scan();
     for (const LayerInfo& layer : scan.layers)
       if (!where.by_layer() || where.layer_selected(layer)) s.ramp_layers.push_back(layer.index);
   }

@@ -46,8 +46,9 @@ class Filter {
   // Every layer (number, Z, height) and every ;TYPE: name of the input, for
   // a tool that must know them before its first byte goes out (a ramp across
   // the chosen layers, a check of --types): reads the input once, as
-  // count_layers does, and goes back to its start.
-  InputScan scan();
+  // count_layers does, and goes back to its start. Read once: later calls
+  // give the same scan.
+  const InputScan& scan();
   // Parses a selection and, when a range counts from the end, counts the
   // layers first; with --types, reads the file's features first and throws
   // UsageError for a name it does not have (before any output). Throws
@@ -93,6 +94,7 @@ class Filter {
   std::optional<OutputBuffer> buffer_;
   std::optional<GcodeWriter> writer_;
   std::function<bool()> done_;
+  std::optional<InputScan> scanned_;
 };
 
 // --types names (`wanted`) that match none of a file's ;TYPE: names
