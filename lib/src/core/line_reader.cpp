@@ -12,24 +12,22 @@ namespace gcode {
 
 namespace {
 
-// Fills `line` from data[start, nl) where nl is the index of '\n' or npos.
+// The line [first, nl) and its ending ("\n" or "\r\n"), nl at a '\n'.
+inline void split_before(const char* first, const char* nl, RawLine& line) {
+  const char* text_end = nl > first && nl[-1] == '\r' ? nl - 1 : nl;
+  line.text = std::string_view(first, static_cast<std::size_t>(text_end - first));
+  line.ending = std::string_view(text_end, static_cast<std::size_t>(nl + 1 - text_end));
+}
+
+// Fills `line` from data[start, nl) where nl is the index of '\n' or npos
+// (the last line, without an ending).
 void split_at(std::string_view data, std::size_t start, std::size_t nl, RawLine& line) {
   if (nl == std::string_view::npos) {
     line.text = data.substr(start);
     line.ending = {};
     return;
   }
-  std::size_t text_end = nl;
-  if (text_end > start && data[text_end - 1] == '\r') --text_end;
-  line.text = data.substr(start, text_end - start);
-  line.ending = data.substr(text_end, nl + 1 - text_end);
-}
-
-// The line [first, nl) and its ending ("\n" or "\r\n"), nl at a '\n'.
-inline void split_before(const char* first, const char* nl, RawLine& line) {
-  const char* text_end = nl > first && nl[-1] == '\r' ? nl - 1 : nl;
-  line.text = std::string_view(first, static_cast<std::size_t>(text_end - first));
-  line.ending = std::string_view(text_end, static_cast<std::size_t>(nl + 1 - text_end));
+  split_before(data.data() + start, data.data() + nl, line);
 }
 
 // The first '\n' in [p, stop), or nullptr. A G-code line is some 25 bytes:
