@@ -110,10 +110,7 @@ void check_types(const std::vector<std::string>& wanted, const std::vector<std::
 }
 
 void Filter::check_selection(const LayerSelection& where, Diagnostics& diag, std::string_view done) {
-  const LayerTracker& tracker = pipeline_.tracker();
-  std::vector<std::string> features;
-  for (int f = 0; f < tracker.feature_count(); ++f) features.push_back(tracker.feature_name(f));
-  check_types(where.types(), features);
+  // --types names were checked by selection(), before any output.
   if (where.by_layer() && where.layers_selected() == 0)
     diag.warn("no layer of " + input_.name() + " matches the selection; nothing was " + std::string(done));
 }

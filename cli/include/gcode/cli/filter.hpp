@@ -54,10 +54,9 @@ class Filter {
   // UsageError for a name it does not have (before any output). Throws
   // UsageError when it does not parse.
   LayerSelection selection(const SelectionText& text);
-  // After the run, what a selection found: --types names that matched no
-  // feature of the input are a usage error that lists the names it has;
-  // --layers/--z-range that chose no layer is a warning ("no layer of FILE
-  // matches the selection; nothing was <done>").
+  // After the run, what a selection found: --layers/--z-range that chose no
+  // layer is a warning ("no layer of FILE matches the selection; nothing was
+  // <done>"). (--types names the file lacks were refused by selection().)
   void check_selection(const LayerSelection& where, Diagnostics& diag, std::string_view done);
   // What the slicer's SLIC3R_* environment (a post-processing hook) and then
   // the file say about the printer (bed, height, the print's box, filament,
