@@ -237,6 +237,18 @@ TEST_CASE("errors: missing layer, empty input, no extrusion, bad options", "[gc-
   auto none = run(gctest::tool_command("gc-layers", "-"), "G28\nG1 Z10\n");
   CHECK(none.status == 1);
   CHECK(none.err.find("no extrusion") != std::string::npos);
+  // A cut counts layers without the reports' table: the same checks, the
+  // same count.
+  auto empty_cut = run(gctest::tool_command("gc-layers", "--extract 1- -"), "");
+  CHECK(empty_cut.status == 1);
+  CHECK(empty_cut.err.find("empty input") != std::string::npos);
+  auto none_cut = run(gctest::tool_command("gc-layers", "--extract 1- -"), "G28\nG1 Z10\n");
+  CHECK(none_cut.status == 1);
+  CHECK(none_cut.err.find("no extrusion") != std::string::npos);
+  CHECK(run(gctest::tool_command("gc-layers", "-v --extract 3-4 " + quote(path))).err.find("wrote 2 of 100 layers") !=
+        std::string::npos);
+  CHECK(run(gctest::tool_command("gc-layers", "-v --z-range 0:0.6 " + quote(path))).err.find(" of 100 layers") !=
+        std::string::npos);
   CHECK(run(gctest::tool_command("gc-layers", "--extract 5-2 " + quote(path))).status == 2);
   CHECK(run(gctest::tool_command("gc-layers", "--extract abc " + quote(path))).status == 2);
   CHECK(run(gctest::tool_command("gc-layers", "--bogus " + quote(path))).status == 2);
