@@ -231,20 +231,17 @@ TEST_CASE("errors: missing layer, empty input, no extrusion, bad options", "[gc-
   auto where = run(gctest::tool_command("gc-layers", "--where 101 " + quote(path)));
   CHECK(where.status == 1);
   CHECK(where.err.find("has 100 layers") != std::string::npos);
-  auto empty = run(gctest::tool_command("gc-layers", "-"), "");
-  CHECK(empty.status == 1);
-  CHECK(empty.err.find("empty input") != std::string::npos);
-  auto none = run(gctest::tool_command("gc-layers", "-"), "G28\nG1 Z10\n");
-  CHECK(none.status == 1);
-  CHECK(none.err.find("no extrusion") != std::string::npos);
-  // A cut counts layers without the reports' table: the same checks, the
-  // same count.
-  auto empty_cut = run(gctest::tool_command("gc-layers", "--extract 1- -"), "");
-  CHECK(empty_cut.status == 1);
-  CHECK(empty_cut.err.find("empty input") != std::string::npos);
-  auto none_cut = run(gctest::tool_command("gc-layers", "--extract 1- -"), "G28\nG1 Z10\n");
-  CHECK(none_cut.status == 1);
-  CHECK(none_cut.err.find("no extrusion") != std::string::npos);
+  // The report, and a cut, which counts layers without the report's table:
+  // the same checks, the same count.
+  for (const char* args : {"-", "--extract 1- -"}) {
+    INFO(args);
+    auto empty = run(gctest::tool_command("gc-layers", args), "");
+    CHECK(empty.status == 1);
+    CHECK(empty.err.find("empty input") != std::string::npos);
+    auto none = run(gctest::tool_command("gc-layers", args), "G28\nG1 Z10\n");
+    CHECK(none.status == 1);
+    CHECK(none.err.find("no extrusion") != std::string::npos);
+  }
   CHECK(run(gctest::tool_command("gc-layers", "-v --extract 3-4 " + quote(path))).err.find("wrote 2 of 100 layers") !=
         std::string::npos);
   CHECK(run(gctest::tool_command("gc-layers", "-v --z-range 0:0.6 " + quote(path))).err.find(" of 100 layers") !=
