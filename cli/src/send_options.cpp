@@ -6,9 +6,9 @@
 
 #include <charconv>
 
-#include "gcode/serial/control_fifo.hpp"
-#include "gcode/serial/journal.hpp"
-#include "gcode/serial/line_check.hpp"
+#include "gcode/serial/control/control_fifo.hpp"
+#include "gcode/serial/journal/journal.hpp"
+#include "gcode/serial/protocol/line_check.hpp"
 #include "gcode/transform/custom_gcode.hpp"
 
 namespace gcode::cli {

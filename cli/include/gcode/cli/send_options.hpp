@@ -8,7 +8,7 @@
 
 #include "gcode/cli/pause_options.hpp"
 #include "gcode/cli/tool.hpp"
-#include "gcode/serial/send_job.hpp"
+#include "gcode/serial/job/send_job.hpp"
 
 namespace gcode::cli {
 

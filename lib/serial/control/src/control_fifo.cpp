@@ -1,4 +1,4 @@
-#include "gcode/serial/control_fifo.hpp"
+#include "gcode/serial/control/control_fifo.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -14,7 +14,7 @@
 #include <fmt/format.h>
 
 #include "gcode/core/text.hpp"
-#include "gcode/serial/private_path.hpp"
+#include "gcode/serial/link/private_path.hpp"
 
 namespace gcode::serial {
 

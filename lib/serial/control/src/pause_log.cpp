@@ -1,4 +1,4 @@
-#include "gcode/serial/pause_log.hpp"
+#include "gcode/serial/control/pause_log.hpp"
 
 #include <utility>
 

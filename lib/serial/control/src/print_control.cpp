@@ -1,4 +1,4 @@
-#include "gcode/serial/print_control.hpp"
+#include "gcode/serial/control/print_control.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -12,8 +12,8 @@
 #include "gcode/core/text.hpp"
 #include "gcode/transform/custom_gcode.hpp"
 #include "gcode/transform/transition.hpp"
-#include "gcode/serial/event_loop.hpp"
-#include "gcode/serial/protocol.hpp"
+#include "gcode/serial/link/event_loop.hpp"
+#include "gcode/serial/protocol/protocol.hpp"
 
 namespace gcode::serial {
 

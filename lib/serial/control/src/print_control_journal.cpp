@@ -10,7 +10,7 @@
 
 #include <fmt/format.h>
 
-#include "gcode/serial/print_control.hpp"
+#include "gcode/serial/control/print_control.hpp"
 
 namespace gcode::serial {
 

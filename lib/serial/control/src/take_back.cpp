@@ -1,4 +1,4 @@
-#include "gcode/serial/take_back.hpp"
+#include "gcode/serial/control/take_back.hpp"
 
 #include <iterator>
 

@@ -1,4 +1,4 @@
-#include "gcode/serial/printer_probe.hpp"
+#include "gcode/serial/job/printer_probe.hpp"
 
 #include <poll.h>
 #include <unistd.h>
@@ -9,9 +9,9 @@
 
 #include <fmt/format.h>
 
-#include "gcode/serial/event_loop.hpp"
-#include "gcode/serial/printer_report.hpp"
-#include "gcode/serial/protocol.hpp"
+#include "gcode/serial/link/event_loop.hpp"
+#include "gcode/serial/protocol/printer_report.hpp"
+#include "gcode/serial/protocol/protocol.hpp"
 
 namespace gcode::serial {
 

@@ -1,4 +1,4 @@
-#include "gcode/serial/progress.hpp"
+#include "gcode/serial/job/progress.hpp"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "gcode/serial/send_job.hpp"
+#include "gcode/serial/job/send_job.hpp"
 
 #include <sys/socket.h>
 #include <sys/stat.h>
@@ -16,15 +16,15 @@
 #include "gcode/core/number.hpp"
 #include "gcode/pipeline/pipeline.hpp"
 #include "gcode/report/layer_time.hpp"
-#include "gcode/serial/event_loop.hpp"
-#include "gcode/serial/input_identity.hpp"
-#include "gcode/serial/journal_lock.hpp"
-#include "gcode/serial/journal_point.hpp"
-#include "gcode/serial/port.hpp"
-#include "gcode/serial/send_journal.hpp"
-#include "gcode/serial/send_resume.hpp"
-#include "gcode/serial/send_session.hpp"
-#include "gcode/serial/virtual_link.hpp"
+#include "gcode/serial/link/event_loop.hpp"
+#include "gcode/serial/journal/input_identity.hpp"
+#include "gcode/serial/journal/journal_lock.hpp"
+#include "gcode/serial/journal/journal_point.hpp"
+#include "gcode/serial/link/port.hpp"
+#include "gcode/serial/journal/send_journal.hpp"
+#include "gcode/serial/job/send_resume.hpp"
+#include "gcode/serial/job/send_session.hpp"
+#include "gcode/serial/sim/virtual_link.hpp"
 
 namespace gcode::serial {
 

@@ -1,15 +1,15 @@
-#include "gcode/serial/send_resume.hpp"
+#include "gcode/serial/job/send_resume.hpp"
 
 #include <algorithm>
 #include <limits>
 
 #include <fmt/format.h>
 
-#include "gcode/serial/input_identity.hpp"
-#include "gcode/serial/journal_point.hpp"
-#include "gcode/serial/journal_header.hpp"
-#include "gcode/serial/printer_probe.hpp"
-#include "gcode/serial/send_session.hpp"
+#include "gcode/serial/journal/input_identity.hpp"
+#include "gcode/serial/journal/journal_point.hpp"
+#include "gcode/serial/journal/journal_header.hpp"
+#include "gcode/serial/job/printer_probe.hpp"
+#include "gcode/serial/job/send_session.hpp"
 
 namespace gcode::serial {
 

@@ -1,4 +1,4 @@
-#include "gcode/serial/send_session.hpp"
+#include "gcode/serial/job/send_session.hpp"
 
 #include <poll.h>
 #include <signal.h>
@@ -16,7 +16,7 @@
 
 #include "gcode/core/line.hpp"
 #include "gcode/core/line_reader.hpp"
-#include "gcode/serial/protocol.hpp"
+#include "gcode/serial/protocol/protocol.hpp"
 
 namespace gcode::serial {
 

@@ -14,7 +14,7 @@
 
 #include <fmt/format.h>
 
-#include "gcode/serial/send_session.hpp"
+#include "gcode/serial/job/send_session.hpp"
 
 namespace gcode::serial {
 

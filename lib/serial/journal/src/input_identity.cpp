@@ -1,4 +1,4 @@
-#include "gcode/serial/input_identity.hpp"
+#include "gcode/serial/journal/input_identity.hpp"
 
 #include <sys/stat.h>
 #include <xxhash.h>

@@ -1,4 +1,4 @@
-#include "gcode/serial/journal.hpp"
+#include "gcode/serial/journal/journal.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -10,7 +10,7 @@
 
 #include <fmt/format.h>
 
-#include "gcode/serial/private_path.hpp"
+#include "gcode/serial/link/private_path.hpp"
 
 namespace gcode::serial {
 

@@ -1,4 +1,4 @@
-#include "gcode/serial/journal_header.hpp"
+#include "gcode/serial/journal/journal_header.hpp"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "gcode/serial/journal_lock.hpp"
+#include "gcode/serial/journal/journal_lock.hpp"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -9,8 +9,8 @@
 
 #include <fmt/format.h>
 
-#include "gcode/serial/journal.hpp"
-#include "gcode/serial/private_path.hpp"
+#include "gcode/serial/journal/journal.hpp"
+#include "gcode/serial/link/private_path.hpp"
 
 namespace gcode::serial {
 

@@ -1,4 +1,4 @@
-#include "gcode/serial/journal_point.hpp"
+#include "gcode/serial/journal/journal_point.hpp"
 
 #include <algorithm>
 #include <charconv>

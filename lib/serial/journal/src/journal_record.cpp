@@ -1,4 +1,4 @@
-#include "gcode/serial/journal_record.hpp"
+#include "gcode/serial/journal/journal_record.hpp"
 
 #include <charconv>
 

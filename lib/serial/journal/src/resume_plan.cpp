@@ -1,11 +1,11 @@
-#include "gcode/serial/resume_plan.hpp"
+#include "gcode/serial/journal/resume_plan.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
 
-#include "gcode/serial/journal_point.hpp"
+#include "gcode/serial/journal/journal_point.hpp"
 
 namespace gcode::serial {
 

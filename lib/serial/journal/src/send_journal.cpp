@@ -1,11 +1,11 @@
-#include "gcode/serial/send_journal.hpp"
+#include "gcode/serial/journal/send_journal.hpp"
 
 #include <algorithm>
 
 #include <fmt/format.h>
 
-#include "gcode/serial/journal_header.hpp"
-#include "gcode/serial/journal_point.hpp"
+#include "gcode/serial/journal/journal_header.hpp"
+#include "gcode/serial/journal/journal_point.hpp"
 
 namespace gcode::serial {
 

@@ -1,4 +1,4 @@
-#include "gcode/serial/event_loop.hpp"
+#include "gcode/serial/link/event_loop.hpp"
 
 #include <fcntl.h>
 #include <poll.h>

@@ -19,7 +19,7 @@
 
 #include <fmt/format.h>
 
-#include "gcode/serial/port.hpp"
+#include "gcode/serial/link/port.hpp"
 
 namespace gcode::serial {
 

@@ -1,4 +1,4 @@
-#include "gcode/serial/private_path.hpp"
+#include "gcode/serial/link/private_path.hpp"
 
 #include <sys/stat.h>
 #include <unistd.h>

@@ -11,7 +11,7 @@
 
 #include <fmt/format.h>
 
-#include "gcode/serial/port.hpp"
+#include "gcode/serial/link/port.hpp"
 
 namespace gcode::serial {
 

@@ -1,4 +1,4 @@
-#include "gcode/serial/answer_clock.hpp"
+#include "gcode/serial/protocol/answer_clock.hpp"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "gcode/serial/flow_control.hpp"
+#include "gcode/serial/protocol/flow_control.hpp"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "gcode/serial/in_flight.hpp"
+#include "gcode/serial/protocol/in_flight.hpp"
 
 #include <algorithm>
 

@@ -1,8 +1,8 @@
-#include "gcode/serial/line_check.hpp"
+#include "gcode/serial/protocol/line_check.hpp"
 
 #include <fmt/format.h>
 
-#include "gcode/serial/protocol.hpp"
+#include "gcode/serial/protocol/protocol.hpp"
 
 namespace gcode::serial {
 

@@ -1,4 +1,4 @@
-#include "gcode/serial/pace_rate.hpp"
+#include "gcode/serial/protocol/pace_rate.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "gcode/serial/pacer.hpp"
+#include "gcode/serial/protocol/pacer.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "gcode/serial/printer_report.hpp"
+#include "gcode/serial/protocol/printer_report.hpp"
 
 #include <cctype>
 #include <charconv>

@@ -1,4 +1,4 @@
-#include "gcode/serial/probe_credit.hpp"
+#include "gcode/serial/protocol/probe_credit.hpp"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "gcode/serial/protocol.hpp"
+#include "gcode/serial/protocol/protocol.hpp"
 
 #include <charconv>
 #include <cstdlib>

@@ -1,4 +1,4 @@
-#include "gcode/serial/resend.hpp"
+#include "gcode/serial/protocol/resend.hpp"
 
 namespace gcode::serial {
 

@@ -1,4 +1,4 @@
-#include "gcode/serial/reset_sequence.hpp"
+#include "gcode/serial/protocol/reset_sequence.hpp"
 
 #include <fmt/format.h>
 

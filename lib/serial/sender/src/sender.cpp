@@ -1,4 +1,4 @@
-#include "gcode/serial/sender.hpp"
+#include "gcode/serial/sender/sender.hpp"
 
 #include <algorithm>
 #include <cmath>

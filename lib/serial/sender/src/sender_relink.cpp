@@ -9,9 +9,9 @@
 
 #include <fmt/format.h>
 
-#include "gcode/serial/printer_report.hpp"
-#include "gcode/serial/protocol.hpp"
-#include "gcode/serial/sender.hpp"
+#include "gcode/serial/protocol/printer_report.hpp"
+#include "gcode/serial/protocol/protocol.hpp"
+#include "gcode/serial/sender/sender.hpp"
 
 namespace gcode::serial {
 

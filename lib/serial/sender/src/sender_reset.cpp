@@ -17,8 +17,8 @@
 #include <fmt/format.h>
 
 #include "gcode/core/line.hpp"
-#include "gcode/serial/line_check.hpp"
-#include "gcode/serial/sender.hpp"
+#include "gcode/serial/protocol/line_check.hpp"
+#include "gcode/serial/sender/sender.hpp"
 
 namespace gcode::serial {
 

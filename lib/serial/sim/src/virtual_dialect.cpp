@@ -1,12 +1,12 @@
 // Marlin 2's texts, the defaults every other dialect starts from, and the
 // dialects by name.
-#include "gcode/serial/virtual_dialect.hpp"
+#include "gcode/serial/sim/virtual_dialect.hpp"
 
 #include <fmt/format.h>
 
 #include "gcode/core/feature.hpp"
 #include "gcode/core/line.hpp"
-#include "gcode/serial/virtual_printer_options.hpp"
+#include "gcode/serial/sim/virtual_printer_options.hpp"
 
 namespace gcode::serial {
 

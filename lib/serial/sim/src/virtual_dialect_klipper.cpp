@@ -11,8 +11,8 @@
 
 #include "gcode/core/firmware.hpp"
 #include "gcode/core/line.hpp"
-#include "gcode/serial/virtual_dialect.hpp"
-#include "gcode/serial/virtual_printer_options.hpp"
+#include "gcode/serial/sim/virtual_dialect.hpp"
+#include "gcode/serial/sim/virtual_printer_options.hpp"
 
 namespace gcode::serial {
 

@@ -4,8 +4,8 @@
 // nothing (M600, and "M115 U<version>" newer than its own).
 #include <fmt/format.h>
 
-#include "gcode/serial/virtual_dialect.hpp"
-#include "gcode/serial/virtual_printer_options.hpp"
+#include "gcode/serial/sim/virtual_dialect.hpp"
+#include "gcode/serial/sim/virtual_printer_options.hpp"
 
 namespace gcode::serial {
 

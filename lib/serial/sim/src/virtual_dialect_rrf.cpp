@@ -4,8 +4,8 @@
 #include <fmt/format.h>
 
 #include "gcode/core/line.hpp"
-#include "gcode/serial/virtual_dialect.hpp"
-#include "gcode/serial/virtual_printer_options.hpp"
+#include "gcode/serial/sim/virtual_dialect.hpp"
+#include "gcode/serial/sim/virtual_printer_options.hpp"
 
 namespace gcode::serial {
 

@@ -1,4 +1,4 @@
-#include "gcode/serial/virtual_fault.hpp"
+#include "gcode/serial/sim/virtual_fault.hpp"
 
 #include <charconv>
 #include <cmath>

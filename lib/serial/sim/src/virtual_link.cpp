@@ -1,4 +1,4 @@
-#include "gcode/serial/virtual_link.hpp"
+#include "gcode/serial/sim/virtual_link.hpp"
 
 #include <poll.h>
 #include <sys/prctl.h>

@@ -1,4 +1,4 @@
-#include "gcode/serial/virtual_printer.hpp"
+#include "gcode/serial/sim/virtual_printer.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 
 #include "gcode/core/line.hpp"
-#include "gcode/serial/protocol.hpp"
+#include "gcode/serial/protocol/protocol.hpp"
 
 namespace gcode::serial {
 

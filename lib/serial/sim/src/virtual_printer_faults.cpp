@@ -8,7 +8,7 @@
 
 #include <fmt/format.h>
 
-#include "gcode/serial/virtual_printer.hpp"
+#include "gcode/serial/sim/virtual_printer.hpp"
 
 namespace gcode::serial {
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "gcode/core/line.hpp"
-#include "gcode/serial/virtual_printer.hpp"
+#include "gcode/serial/sim/virtual_printer.hpp"
 
 namespace gcode::serial {
 

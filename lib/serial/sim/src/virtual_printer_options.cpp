@@ -1,4 +1,4 @@
-#include "gcode/serial/virtual_printer_options.hpp"
+#include "gcode/serial/sim/virtual_printer_options.hpp"
 
 #include <algorithm>
 #include <charconv>

@@ -1,4 +1,4 @@
-#include "gcode/serial/virtual_printer_runner.hpp"
+#include "gcode/serial/sim/virtual_printer_runner.hpp"
 
 #include <poll.h>
 #include <signal.h>
@@ -11,9 +11,9 @@
 #include <memory>
 #include <stdexcept>
 
-#include "gcode/serial/event_loop.hpp"
-#include "gcode/serial/port.hpp"
-#include "gcode/serial/virtual_link.hpp"
+#include "gcode/serial/link/event_loop.hpp"
+#include "gcode/serial/link/port.hpp"
+#include "gcode/serial/sim/virtual_link.hpp"
 
 namespace gcode::serial {
 

@@ -1,4 +1,4 @@
-#include "gcode/serial/virtual_wire.hpp"
+#include "gcode/serial/sim/virtual_wire.hpp"
 
 #include <algorithm>
 #include <cmath>

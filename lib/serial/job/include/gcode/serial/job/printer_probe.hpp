@@ -12,7 +12,7 @@
 #include <string>
 #include <string_view>
 
-#include "gcode/serial/resume_plan.hpp"
+#include "gcode/serial/journal/resume_plan.hpp"
 
 namespace gcode::serial {
 

@@ -11,10 +11,10 @@
 #include "gcode/core/diagnostics.hpp"
 #include "gcode/core/e_mode.hpp"
 #include "gcode/core/print_area.hpp"
-#include "gcode/serial/print_control.hpp"
-#include "gcode/serial/progress.hpp"
-#include "gcode/serial/sender.hpp"
-#include "gcode/serial/virtual_printer.hpp"
+#include "gcode/serial/control/print_control.hpp"
+#include "gcode/serial/job/progress.hpp"
+#include "gcode/serial/sender/sender.hpp"
+#include "gcode/serial/sim/virtual_printer.hpp"
 
 namespace gcode::serial {
 

@@ -15,9 +15,9 @@
 #include <string_view>
 #include <vector>
 
-#include "gcode/serial/journal.hpp"
-#include "gcode/serial/printer_probe.hpp"
-#include "gcode/serial/resume_plan.hpp"
+#include "gcode/serial/journal/journal.hpp"
+#include "gcode/serial/job/printer_probe.hpp"
+#include "gcode/serial/journal/resume_plan.hpp"
 
 namespace gcode::serial {
 

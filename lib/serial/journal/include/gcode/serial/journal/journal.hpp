@@ -35,7 +35,7 @@
 #include <string>
 #include <vector>
 
-#include "gcode/serial/journal_record.hpp"
+#include "gcode/serial/journal/journal_record.hpp"
 
 namespace gcode::serial {
 

@@ -5,8 +5,8 @@
 #include <string>
 #include <string_view>
 
-#include "gcode/serial/input_identity.hpp"
-#include "gcode/serial/journal_record.hpp"
+#include "gcode/serial/journal/input_identity.hpp"
+#include "gcode/serial/journal/journal_record.hpp"
 
 namespace gcode::serial {
 

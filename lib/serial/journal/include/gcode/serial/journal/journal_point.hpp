@@ -23,8 +23,8 @@
 #include <string>
 
 #include "gcode/core/machine_state.hpp"
-#include "gcode/serial/journal_record.hpp"
-#include "gcode/serial/reset_sequence.hpp"
+#include "gcode/serial/journal/journal_record.hpp"
+#include "gcode/serial/protocol/reset_sequence.hpp"
 
 namespace gcode::serial {
 

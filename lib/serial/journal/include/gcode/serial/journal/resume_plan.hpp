@@ -30,9 +30,9 @@
 #include <string>
 
 #include "gcode/core/machine_state.hpp"
-#include "gcode/serial/journal.hpp"
-#include "gcode/serial/printer_report.hpp"
-#include "gcode/serial/reset_sequence.hpp"
+#include "gcode/serial/journal/journal.hpp"
+#include "gcode/serial/protocol/printer_report.hpp"
+#include "gcode/serial/protocol/reset_sequence.hpp"
 
 namespace gcode::serial {
 

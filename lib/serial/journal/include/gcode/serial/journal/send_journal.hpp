@@ -15,10 +15,10 @@
 #include <vector>
 
 #include "gcode/core/machine_state.hpp"
-#include "gcode/serial/input_identity.hpp"
-#include "gcode/serial/journal.hpp"
-#include "gcode/serial/numbered_command.hpp"
-#include "gcode/serial/reset_sequence.hpp"
+#include "gcode/serial/journal/input_identity.hpp"
+#include "gcode/serial/journal/journal.hpp"
+#include "gcode/serial/protocol/numbered_command.hpp"
+#include "gcode/serial/protocol/reset_sequence.hpp"
 
 namespace gcode::serial {
 

@@ -20,7 +20,7 @@
 #include <optional>
 #include <string_view>
 
-#include "gcode/serial/protocol.hpp"
+#include "gcode/serial/protocol/protocol.hpp"
 
 namespace gcode::serial {
 

@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <deque>
 
-#include "gcode/serial/protocol.hpp"
+#include "gcode/serial/protocol/protocol.hpp"
 
 namespace gcode::serial {
 

@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "gcode/core/machine_state.hpp"
-#include "gcode/serial/reset_sequence.hpp"
+#include "gcode/serial/protocol/reset_sequence.hpp"
 
 namespace gcode::serial {
 

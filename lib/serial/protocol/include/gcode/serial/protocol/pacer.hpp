@@ -56,8 +56,8 @@
 #include <array>
 #include <cstddef>
 
-#include "gcode/serial/pace_rate.hpp"
-#include "gcode/serial/probe_credit.hpp"
+#include "gcode/serial/protocol/pace_rate.hpp"
+#include "gcode/serial/protocol/probe_credit.hpp"
 
 namespace gcode::serial {
 

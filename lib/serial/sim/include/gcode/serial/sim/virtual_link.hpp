@@ -5,8 +5,8 @@
 // simulated time with the model's time scale.
 #include <string>
 
-#include "gcode/serial/event_loop.hpp"
-#include "gcode/serial/virtual_printer.hpp"
+#include "gcode/serial/link/event_loop.hpp"
+#include "gcode/serial/sim/virtual_printer.hpp"
 
 namespace gcode::serial {
 

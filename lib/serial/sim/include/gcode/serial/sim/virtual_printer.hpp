@@ -49,9 +49,9 @@
 #include <string_view>
 
 #include "gcode/core/machine_state.hpp"
-#include "gcode/serial/virtual_dialect.hpp"
-#include "gcode/serial/virtual_printer_options.hpp"
-#include "gcode/serial/virtual_wire.hpp"
+#include "gcode/serial/sim/virtual_dialect.hpp"
+#include "gcode/serial/sim/virtual_printer_options.hpp"
+#include "gcode/serial/sim/virtual_wire.hpp"
 
 namespace gcode::serial {
 

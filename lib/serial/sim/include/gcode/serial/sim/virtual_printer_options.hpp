@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "gcode/serial/virtual_fault.hpp"
+#include "gcode/serial/sim/virtual_fault.hpp"
 
 namespace gcode::serial {
 

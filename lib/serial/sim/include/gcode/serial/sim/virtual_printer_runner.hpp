@@ -9,7 +9,7 @@
 // `drop_seconds`, so a test can fire a fault at the moment it chooses.
 #include <string>
 
-#include "gcode/serial/virtual_printer.hpp"
+#include "gcode/serial/sim/virtual_printer.hpp"
 
 namespace gcode::serial {
 
