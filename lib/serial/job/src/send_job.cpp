@@ -1,6 +1,5 @@
 #include "gcode/serial/job/send_job.hpp"
 
-#include <sys/socket.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -24,13 +23,10 @@
 #include "gcode/serial/journal/send_journal.hpp"
 #include "gcode/serial/job/send_resume.hpp"
 #include "gcode/serial/job/send_session.hpp"
-#include "gcode/serial/sim/virtual_link.hpp"
 
 namespace gcode::serial {
 
 namespace {
-
-constexpr std::string_view kVirtual = "virtual";
 
 // "link utilisation 98.5 % (250000 baud)": bytes written against what the
 // baud rate could carry while printing. A pseudo-terminal has no rate, and a
@@ -52,8 +48,10 @@ std::string link_report(const Sender& sender, double baud, double scale, bool pt
   return fmt::format("link utilisation {:.1f} % ({:g} baud{})", percent, baud, scale_note);
 }
 
-void print_summary(const Sender& sender, const VirtualPrinter* printer, const PrintControl& control, double baud,
-                   double scale, bool pty, Diagnostics& diag) {
+void print_summary(const Sender& sender, const PrinterLink& link, const PrintControl& control, Diagnostics& diag) {
+  const double baud = link.baud();
+  const double scale = link.time_scale();
+  const bool pty = link.pty();
   const SenderStats& s = sender.stats();
   double elapsed = s.print_end > s.print_start && s.print_start >= 0 ? s.print_end - s.print_start : 0;
   std::string input;
@@ -80,13 +78,8 @@ void print_summary(const Sender& sender, const VirtualPrinter* printer, const Pr
     diag.report(fmt::format("pause ({}): asked in layer {}, paused {} after input line {}{}", p.request, p.layer, where,
                             p.input_line, latency));
   }
-  if (printer != nullptr) {
-    const VirtualPrinterStats& v = printer->stats();
-    diag.report(fmt::format("virtual printer: executed {}, accepted lines {}, planner starved {:.2f} % of the print, "
-                            "bytes lost to overruns {}, print time {:.1f} s simulated",
-                            v.executed, v.accepted_lines, 100.0 * printer->starvation(), v.overrun_bytes,
-                            v.last_move_end > v.first_move ? v.last_move_end - v.first_move : 0.0));
-  }
+  const std::string far_end = link.summary();
+  if (!far_end.empty()) diag.report(far_end);
 }
 
 // The input as the journal names it: a file by its absolute path, so that
@@ -105,14 +98,6 @@ void print_journal_summary(const JournalWriter& w, Diagnostics& diag) {
                           w.bytes_written(), w.file_bytes(), w.syncs(), w.compactions()));
 }
 
-}  // namespace
-
-bool is_virtual_port(const std::string& port) {
-  return port == kVirtual || port.rfind(std::string(kVirtual) + ":", 0) == 0;
-}
-
-namespace {
-
 int open_or_wait(const SendJob& job, double wait, Diagnostics& diag) {
   const PortOptions options{job.baud, job.reset};
   try {
@@ -124,82 +109,36 @@ int open_or_wait(const SendJob& job, double wait, Diagnostics& diag) {
   return wait_for_port(job.port, options, wait);
 }
 
-// The port: a real device or pty, or a socketpair to an in-process model.
-struct PortSetup {
-  int fd = -1;
-  int model_fd = -1;
-  std::unique_ptr<VirtualPrinter> printer;
-  std::unique_ptr<VirtualLink> link;
-  std::FILE* vlog = nullptr;
-  double baud = 0;
-  double scale = 1;
-  bool pty = false;
-
-  // `wait`: seconds a port that is away is waited for (a resume started
-  // while the USB link is still down).
-  PortSetup(const SendJob& job, EventLoop& loop, double wait, Diagnostics& diag) : baud(job.baud) {
-    if (!is_virtual_port(job.port)) {
-      fd = open_or_wait(job, wait, diag);
-      pty = is_pseudo_terminal(fd);
-      return;
-    }
-    int fds[2];
-    if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, fds) != 0)
-      throw std::runtime_error("cannot create the virtual printer's link");
-    fd = fds[0];
-    model_fd = fds[1];
-    if (!job.vconfig.log_path.empty()) {
-      vlog = std::fopen(job.vconfig.log_path.c_str(), "w");
-      if (vlog == nullptr) throw std::runtime_error(fmt::format("cannot write {}", job.vconfig.log_path));
-    }
-    printer = std::make_unique<VirtualPrinter>(job.vconfig, vlog);
-    link = std::make_unique<VirtualLink>(loop, *printer, model_fd);
-    baud = job.vconfig.baud;
-    scale = job.vconfig.time_scale;
-  }
-  ~PortSetup() {
-    link.reset();
-    if (vlog != nullptr) std::fclose(vlog);
-    if (model_fd >= 0) ::close(model_fd);
-    if (fd >= 0) ::close(fd);
-  }
-  PortSetup(const PortSetup&) = delete;
-  PortSetup& operator=(const PortSetup&) = delete;
-};
+// The far end: the front end's choice (the simulated printer), else the device or pty at job.port.
+std::unique_ptr<PrinterLink> open_link(const SendJob& job, EventLoop& loop, double wait, Diagnostics& diag) {
+  if (job.link) return job.link(loop, wait, diag);
+  return std::make_unique<PortLink>(job.port, PortOptions{job.baud, job.reset}, open_or_wait(job, wait, diag));
+}
 
 // A resume asks the printer what it did (printer_probe.hpp); a port that
 // goes away meanwhile is waited for (--reconnect) and the printer asked
 // again: it answers for what it did while the link was down.
-ProbeResult probe_through_drops(PortSetup& port, const SendJob& job, double timeout,
+ProbeResult probe_through_drops(PrinterLink& link, const SendJob& job, double timeout,
                                 const std::function<void(std::string_view)>& trace, Diagnostics& diag) {
   for (;;) {
     try {
-      return probe_printer(port.fd, timeout, trace);
+      return probe_printer(link.fd(), timeout, trace);
     } catch (const PortLost& e) {
-      if (port.printer || job.reconnect <= 0) throw;
+      if (!link.reconnects() || job.reconnect <= 0) throw;
       diag.warn(0, fmt::format("{}; waiting up to {:g} s for {} to come back (--reconnect)", e.what(), job.reconnect,
                                job.port));
-      ::close(port.fd);
-      port.fd = -1;
       const double lost = EventLoop::now();
-      port.fd = wait_for_port(job.port, PortOptions{job.baud, false}, job.reconnect);
+      link.reopen(job.reconnect);
       diag.warn(0, fmt::format("the port is back after {:.2f} s; asking the printer again", EventLoop::now() - lost));
     }
   }
 }
 
-// The virtual printer's motion, for the pause's latency figures.
-void set_motion_probe(SendSession& session, PortSetup& port) {
-  VirtualPrinter* p = port.printer.get();
-  VirtualLink* l = port.link.get();
-  session.control()->set_probe(MotionProbe{[l] { return l->simulated_now(); },
-                                           [p](double t) { return p->travelled(t); }, [p](long long n) { p->watch(n); },
-                                           [p](double& end, double& queued) {
-                                             if (!p->watched().seen) return false;
-                                             end = p->watched().motion_end;
-                                             queued = p->watched().queued_length;
-                                             return true;
-                                           }});
+// The far end's motion (a simulated printer's), for the pause's latency figures.
+void set_motion_probe(SendSession& session, FarMotion& m) {
+  session.control()->set_probe(MotionProbe{[&m] { return m.now(); }, [&m](double t) { return m.travelled(t); },
+                                           [&m](long long n) { m.watch(n); },
+                                           [&m](double& end, double& queued) { return m.watched(end, queued); }});
 }
 
 // A file's layers are counted and its time estimated before it is sent (one
@@ -277,12 +216,12 @@ Sender::Logger sender_log(const TraceLog& trace, Diagnostics& diag) {
   };
 }
 
-SenderConfig sender_config(const SendJob& job, const PortSetup& port, bool resuming) {
+SenderConfig sender_config(const SendJob& job, const PrinterLink& link, bool resuming) {
   SenderConfig config = job.sender;
   // A pseudo-terminal has no baud rate: its bytes cross at once, unless the
   // simulated printer behind it reports its own (M115 BAUD, TIME_SCALE).
-  config.link_bytes_per_second = port.pty ? 0 : port.baud / 10 * port.scale;
-  config.time_scale = port.scale;
+  config.link_bytes_per_second = link.pty() ? 0 : link.baud() / 10 * link.time_scale();
+  config.time_scale = link.time_scale();
   if (resuming) config.handshake = false;  // M110 N0 would lose the numbering the printer goes on with
   return config;
 }
@@ -375,7 +314,7 @@ struct SessionStart {
 
 // The session's control (the park by the file's area, the E mode, the
 // state a resume left), its progress, the reconnect and the layer count.
-void prepare_session(SendSession& session, const SendJob& job, PortSetup& port, const InputFile& input,
+void prepare_session(SendSession& session, const SendJob& job, PrinterLink& link, const InputFile& input,
                      SessionStart from, Diagnostics& diag) {
   PrintControlConfig control = job.control;
   const bool resuming = from.resume != nullptr;
@@ -387,26 +326,26 @@ void prepare_session(SendSession& session, const SendJob& job, PortSetup& port, 
   int e_relative = resuming ? -1 : session.read_e_mode(job.e_mode, input.name());
   session.set_control(control, job.control_path);
   if (resuming) back_into_control(*session.control(), *from.resume, job.quiet, diag);
-  if (!port.printer) session.set_reconnect(job.port, PortOptions{job.baud, false}, job.reconnect);
+  if (link.reconnects()) session.set_reconnect(job.port, PortOptions{job.baud, false}, job.reconnect);
   ProgressOptions progress = job.progress;
   if (job.quiet) progress.mode = ProgressMode::Off;  // the status file is still kept
   session.set_progress(progress);
-  if (port.printer) set_motion_probe(session, port);
+  if (link.motion() != nullptr) set_motion_probe(session, *link.motion());
   if (!from.from_stdin && !job.quiet && !resuming) count_layers(input.name(), session, e_relative);
   if (session.fifo() != nullptr) diag.info(fmt::format("control FIFO: {}", session.fifo()->path()));
 }
 
 // After the print: the journal closed when the print ended, the summaries,
 // and how it ended; a failure says how to go on with the part on the bed.
-SendOutcome finish(const Sender& sender, SendSession& session, PortSetup& port, SendJournal* journal,
+SendOutcome finish(const Sender& sender, SendSession& session, PrinterLink& link, SendJournal* journal,
                    const SendJob& job, const std::string& input, Diagnostics& diag) {
   const SenderState state = sender.state();
   if (journal != nullptr && (state == SenderState::Done || state == SenderState::Cancelled))
     journal->finish(EventLoop::now());
-  if (!job.quiet) print_summary(sender, port.printer.get(), *session.control(), port.baud, port.scale, port.pty, diag);
+  if (!job.quiet) print_summary(sender, link, *session.control(), diag);
   if (journal != nullptr && !job.quiet) print_journal_summary(journal->writer(), diag);
   // The session closed the descriptor it was given when the port went away.
-  if (session.port_replaced()) port.fd = -1;
+  if (session.port_replaced()) link.release();
   if (state == SenderState::Done) return {SendEnd::Finished, {}};
   if (state == SenderState::Cancelled) return {SendEnd::EmergencyStop, {}};
   diag.report(sender.failure());
@@ -444,15 +383,15 @@ SendOutcome send(SendJob& job, Diagnostics& diag) {
     keep_unfinished(job, diag);
     journal = open_journal(job, identify_input(name, input.fd()));
   }
-  PortSetup port(job, loop, resume ? job.reconnect : 0, diag);
-  const SenderConfig config = sender_config(job, port, resume.has_value());
+  const std::unique_ptr<PrinterLink> link = open_link(job, loop, resume ? job.reconnect : 0, diag);
+  const SenderConfig config = sender_config(job, *link, resume.has_value());
   const TraceLog trace(job, diag);
   Sender sender(config, sender_log(trace, diag));
   sender.set_trace(trace.wanted());
   // (The session is given the port the printer answered on.)
   std::optional<ProbeResult> probe;
-  if (resume) probe = probe_through_drops(port, job, std::max(30.0, config.timeout), std::cref(trace), diag);
-  SendSession session(loop, sender, input.fd(), port.fd, diag,
+  if (resume) probe = probe_through_drops(*link, job, std::max(30.0, config.timeout), std::cref(trace), diag);
+  SendSession session(loop, sender, input.fd(), link->fd(), diag,
                       job.layer_marker.empty() ? LayerMarkers() : LayerMarkers(job.layer_marker));
   std::optional<ResumeStart> start;
   if (resume) {
@@ -465,9 +404,9 @@ SendOutcome send(SendJob& job, Diagnostics& diag) {
   } else if (journal) {
     session.set_journal(journal.get());
   }
-  prepare_session(session, job, port, input, SessionStart{start ? &*start : nullptr, name == "-"}, diag);
+  prepare_session(session, job, *link, input, SessionStart{start ? &*start : nullptr, name == "-"}, diag);
   session.run();
-  return finish(sender, session, port, journal.get(), job, name, diag);
+  return finish(sender, session, *link, journal.get(), job, name, diag);
 }
 
 }  // namespace

@@ -1,11 +1,13 @@
 #pragma once
-// One run of gc-send, from its settled options: the port (a device, a pty,
-// or the in-process virtual printer), the sender, the session with its
+// One run of gc-send, from its settled options: the printer at the far end
+// (link/printer_link.hpp: a device or pty, or the simulated printer the
+// front end chose), the sender, the session with its
 // control FIFO and progress, and the summary at the end. Messages go out
 // through the Diagnostics the tool gives; the run says how it ended as a
 // value, and the tool makes an exit status of it.
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "gcode/core/diagnostics.hpp"
@@ -13,21 +15,26 @@
 #include "gcode/core/print_area.hpp"
 #include "gcode/serial/control/print_control.hpp"
 #include "gcode/serial/job/progress.hpp"
+#include "gcode/serial/link/event_loop.hpp"
+#include "gcode/serial/link/printer_link.hpp"
 #include "gcode/serial/sender/sender.hpp"
-#include "gcode/serial/sim/virtual_printer.hpp"
 
 namespace gcode::serial {
+
+// Makes the far end of the line; `wait`: seconds a port that is away is
+// waited for (a resume started while the USB link is still down).
+using MakePrinterLink = std::function<std::unique_ptr<PrinterLink>(EventLoop&, double wait, Diagnostics&)>;
 
 struct SendJob {
   std::string file;                 // "" or "-": standard input
   std::string layer_marker;         // RE2 pattern of a layer start ("": the slicers' markers)
   EModeChoice e_mode = EModeChoice::Auto;  // a file that never says M82/M83
-  std::string port = "virtual";     // a path, or virtual[:opts] (vconfig holds them)
+  std::string port = "virtual";     // a path, or virtual[:opts]: the journal's name of the printer
   int baud = 250000;
   bool reset = false;
   double reconnect = 180;           // seconds a lost port is waited for (0: the print ends at once)
   SenderConfig sender;              // flow, queue, buffers, timeouts, line limits, pace
-  VirtualPrinterConfig vconfig;
+  MakePrinterLink link;             // empty: the device or pty at `port` (PortLink)
   PrintControlConfig control;       // park filled in by `park` once the file's area is known
   std::function<ParkRules(const PrintArea&, PauseConfig&)> park;
   std::string control_path;         // "" = none
@@ -53,7 +60,6 @@ struct SendOutcome {
   std::string reason;  // Failed: the sender's failure; Refused: the refusal
 };
 
-bool is_virtual_port(const std::string& port);
 SendOutcome run_send_job(SendJob& job, Diagnostics& diagnostics);
 
 }  // namespace gcode::serial
