@@ -109,6 +109,10 @@ check() {
     FNR == NR { exists[$0] = 1; next }
     {
       room = $1; path = $2
+      if (room ~ /:/) {
+        problem(path ": a header of the wing " substr(room, 1, index(room, ":") - 1) " under another wing'\''s name: it belongs in lib/serial/WING/include/gcode/serial/WING/")
+        next
+      }
       if (!(room in uses)) {
         problem(path ": '\''" room "'\'' is no room of the library (scripts/check-includes.sh, docs/architecture.md)")
         next
