@@ -15,14 +15,14 @@
 #include "gcode/core/number.hpp"
 #include "gcode/pipeline/pipeline.hpp"
 #include "gcode/report/layer_time.hpp"
-#include "gcode/serial/link/event_loop.hpp"
+#include "gcode/serial/job/send_resume.hpp"
+#include "gcode/serial/job/send_session.hpp"
 #include "gcode/serial/journal/input_identity.hpp"
 #include "gcode/serial/journal/journal_lock.hpp"
 #include "gcode/serial/journal/journal_point.hpp"
-#include "gcode/serial/link/port.hpp"
 #include "gcode/serial/journal/send_journal.hpp"
-#include "gcode/serial/job/send_resume.hpp"
-#include "gcode/serial/job/send_session.hpp"
+#include "gcode/serial/link/event_loop.hpp"
+#include "gcode/serial/link/port.hpp"
 
 namespace gcode::serial {
 

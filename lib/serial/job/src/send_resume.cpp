@@ -5,11 +5,11 @@
 
 #include <fmt/format.h>
 
-#include "gcode/serial/journal/input_identity.hpp"
-#include "gcode/serial/journal/journal_point.hpp"
-#include "gcode/serial/journal/journal_header.hpp"
 #include "gcode/serial/job/printer_probe.hpp"
 #include "gcode/serial/job/send_session.hpp"
+#include "gcode/serial/journal/input_identity.hpp"
+#include "gcode/serial/journal/journal_header.hpp"
+#include "gcode/serial/journal/journal_point.hpp"
 
 namespace gcode::serial {
 

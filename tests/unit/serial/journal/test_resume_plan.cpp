@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "gcode/core/line.hpp"
+#include "gcode/serial/job/send_resume.hpp"
 #include "gcode/serial/journal/journal_point.hpp"
 #include "gcode/serial/journal/resume_plan.hpp"
-#include "gcode/serial/job/send_resume.hpp"
 #include "test_support.hpp"
 
 using namespace gcode;

@@ -15,8 +15,8 @@
 #include <string_view>
 #include <vector>
 
-#include "gcode/serial/journal/journal.hpp"
 #include "gcode/serial/job/printer_probe.hpp"
+#include "gcode/serial/journal/journal.hpp"
 #include "gcode/serial/journal/resume_plan.hpp"
 
 namespace gcode::serial {

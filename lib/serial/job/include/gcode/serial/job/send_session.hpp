@@ -29,11 +29,11 @@
 #include "gcode/core/print_area.hpp"
 #include "gcode/pipeline/pipeline.hpp"
 #include "gcode/serial/control/control_fifo.hpp"
-#include "gcode/serial/link/event_loop.hpp"
-#include "gcode/serial/link/port.hpp"
 #include "gcode/serial/control/print_control.hpp"
 #include "gcode/serial/job/progress.hpp"
 #include "gcode/serial/journal/send_journal.hpp"
+#include "gcode/serial/link/event_loop.hpp"
+#include "gcode/serial/link/port.hpp"
 #include "gcode/serial/sender/sender.hpp"
 
 namespace gcode::serial {
