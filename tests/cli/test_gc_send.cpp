@@ -171,7 +171,7 @@ TEST_CASE("gc-send: 3000 short moves at 250000 baud with faults are exact with n
           "[gc-send]") {
   // 0.2 mm pieces from the middle of a print; moves take no time, so the
   // link and the recovery from faults are all that counts. Time scale 2
-  // keeps the test short; the figures in the README are at time scale 1.
+  // keeps the test short; the figures in docs/gc-send-faults.md are at time scale 1.
   std::string dir = gctest::temp_dir();
   std::string file = dir + "/moves.gcode";
   auto r = run(quote(tool_path("gc-subdivide")) + " --max 0.2 " +
