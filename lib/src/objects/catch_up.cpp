@@ -41,17 +41,25 @@ void StreamCatchUp::before(const TrackedLine& t, double in_retracted, std::vecto
     retracted_ = in_retracted;
   };
   depth_to_input(t.move.extruding);
-  const bool in_xy = (line_sets(line, 'X') || line_sets(line, 'Y')) && t.move.kind != MoveKind::FirmwareRetract &&
-                     t.move.kind != MoveKind::FirmwareUnretract;
-  const bool needs_xy = t.move.extruding || t.move.kind == MoveKind::Arc || in.relative_xyz ||
-                        (in_xy && !(line_sets(line, 'X') && line_sets(line, 'Y')));
-  const bool needs_z = t.move.extruding || t.move.kind == MoveKind::Arc || (in.relative_xyz && line_sets(line, 'Z')) ||
-                       (in_xy && !line_sets(line, 'Z'));
+  // What the line's own words leave to the position it starts from.
+  const bool fw_move = t.move.kind == MoveKind::FirmwareRetract || t.move.kind == MoveKind::FirmwareUnretract;
+  const bool x = line_sets(line, 'X') && !fw_move, y = line_sets(line, 'Y') && !fw_move, z_word = line_sets(line, 'Z') && !fw_move;
+  // An extrusion, an arc or a wipe (E while moving) starts where the input is.
+  const bool whole = t.move.extruding || t.move.kind == MoveKind::Arc || (t.move.filament != 0 && t.move.moves_head());
+  const bool needs_xy = whole || (in.relative_xyz ? (x || y) : (x != y));
+  const bool needs_z = whole || (in.relative_xyz ? (x || y || z_word) : ((x || y) && !z_word));
   const Fixed z = in.at(kZ);
   const bool xy_off = tr.printer().at(kX) != in.at(kX) || tr.printer().at(kY) != in.at(kY);
-  if (needs_z && needs_xy && xy_off && z > tr.printer().at(kZ)) tr.move_z(z);
-  if (needs_xy && xy_off && in.known[kX] && in.known[kY]) tr.move_xy(in.at(kX), in.at(kY));
-  if (needs_z && in.known[kZ] && tr.printer().at(kZ) != z) tr.move_z(z);
+  const bool z_off = tr.printer().at(kZ) != z;
+  const bool move_xy = needs_xy && xy_off && in.known[kX] && in.known[kY];
+  const bool move_z = needs_z && z_off && in.known[kZ];
+  // Moves are written absolute; a G91 stretch gets its G91 back.
+  const bool relative = tr.printer().relative_xyz && (move_xy || move_z);
+  if (relative) tr.positioning(false);
+  if (move_z && move_xy && z > tr.printer().at(kZ)) tr.move_z(z);
+  if (move_xy) tr.move_xy(in.at(kX), in.at(kY));
+  if (move_z && tr.printer().at(kZ) != z) tr.move_z(z);
+  if (relative) tr.positioning(true);
   // The E coordinate where the line's E is absolute.
   if (!in.relative_e && (line_sets(line, 'E') || t.move.extruding)) tr.e_coordinate(in.at(kE));
   if (!line_sets(line, 'F')) tr.feed_rate(in.feedrate);
@@ -86,12 +94,15 @@ void StreamCatchUp::all(const MachineState& target, double in_retracted, std::ve
   if (now < want) tr.extrude(now - want, moves_.e_feed);
   const Fixed z = target.at(kZ);
   const bool up = z > tr.printer().at(kZ);
+  const bool relative = tr.printer().relative_xyz;
+  if (relative) tr.positioning(false);
   if (up && target.known[kZ]) tr.move_z(z);
   const bool z_off = tr.printer().at(kZ) != z;
   if (target.known[kX] && target.known[kY] &&
       (tr.printer().at(kX) != target.at(kX) || tr.printer().at(kY) != target.at(kY)))
     tr.move_xy(target.at(kX), target.at(kY));
   if (!up && z_off && target.known[kZ]) tr.move_z(z);
+  if (relative) tr.positioning(true);
   if (now > want) tr.extrude(now - want, moves_.e_feed);
   if (!target.relative_e) tr.e_coordinate(target.at(kE));
   tr.feed_rate(target.feedrate);

@@ -23,7 +23,8 @@ bool ObjectExcluder::leaves_out(int object, int layer) const {
 }
 
 void ObjectExcluder::write(std::vector<std::string>& lines, Emitter& out) {
-  if (!noted_ && !options_.note.empty() && !lines.empty()) out.insert(options_.note);
+  if (lines.empty()) return;
+  if (!noted_ && !options_.note.empty()) out.insert(options_.note);
   noted_ = true;
   for (const std::string& l : lines) out.insert(l);
   lines.clear();

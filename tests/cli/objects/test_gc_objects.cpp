@@ -14,7 +14,8 @@ using gctest::run;
 namespace test_gc_objects {
 
 // The fixtures with object labels of several objects, each slicer's.
-const char* const kLabelled[] = {"prusa_pegs_0.2_klipper_zhop_labels.gcode"};
+const char* const kLabelled[] = {"prusa_pegs_0.2_klipper_zhop_labels.gcode", "objects/cura_3objects_abs_zhop_support.gcode",
+                                 "objects/cura_3objects_rel_fwretract.gcode"};
 
 nlohmann::json objects_of(const std::string& path) {
   auto r = run(gctest::tool_command("gc-objects", "--json " + gctest::quote(path)));
