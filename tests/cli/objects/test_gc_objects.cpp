@@ -1,0 +1,92 @@
+// gc-objects on real slicer output: the table and its JSON, and --exclude
+// checked by the independent replay checker (tests/support/objects/
+// object_check.hpp) on every labelled fixture, leaving out each object in
+// turn; --from-layer; the errors.
+#include <catch2/catch.hpp>
+
+#include "objects/object_check.hpp"
+#include "test_support.hpp"
+
+using gctest::fixture_path;
+using gctest::read_file;
+using gctest::run;
+
+namespace test_gc_objects {
+
+// The fixtures with object labels of several objects, each slicer's.
+const char* const kLabelled[] = {"prusa_pegs_0.2_klipper_zhop_labels.gcode", "objects/cura_3objects_abs_zhop_support.gcode",
+                                 "objects/cura_3objects_rel_fwretract.gcode"};
+
+nlohmann::json objects_of(const std::string& path) {
+  auto r = run(gctest::tool_command("gc-objects", "--json " + gctest::quote(path)));
+  REQUIRE(r.status == 0);
+  return nlohmann::json::parse(r.out)["objects"];
+}
+
+// The checker names an object by its label's number, else its name.
+std::vector<std::string> checker_names(const nlohmann::json& o) {
+  return {o["id"].get<std::string>(), o["name"].get<std::string>()};
+}
+
+}  // namespace test_gc_objects
+
+using namespace test_gc_objects;
+
+TEST_CASE("gc-objects: lists the labelled objects of a plate with their boxes, layers and filament", "[gc-objects]") {
+  const nlohmann::json objects = objects_of(fixture_path("prusa_pegs_0.2_klipper_zhop_labels.gcode"));
+  REQUIRE(objects.size() == 12);
+  for (const auto& o : objects) {
+    CHECK(o["source"] == "labels");
+    CHECK(o["first_layer"] == 1);
+    CHECK(o["filament_mm"].get<double>() > 50);
+    CHECK(o["time_s"].get<double>() > 30);
+    CHECK(o["polygon"].size() >= 3);
+    const auto& b = o["bbox"];
+    CHECK(b[2].get<double>() - b[0].get<double>() == Approx(5.5).margin(0.6));
+  }
+  CHECK(objects[0]["id"] == "0");
+  CHECK(objects[0]["name"] == "pegs.stl_1");
+  CHECK(objects[0]["last_layer"] == 40);
+}
+
+TEST_CASE("gc-objects --exclude: every labelled fixture, each object left out in turn, checked by replay", "[gc-objects]") {
+  for (const char* name : kLabelled) {
+    const std::string path = fixture_path(name);
+    const std::string input = read_file(path);
+    const nlohmann::json objects = objects_of(path);
+    for (const auto& o : objects) {
+      const std::string id = o["id"].get<std::string>();
+      INFO(name << " without object " << id);
+      auto r = run(gctest::tool_command("gc-objects", "--exclude " + gctest::quote(id) + " " + gctest::quote(path)));
+      REQUIRE(r.status == 0);
+      const gctest::ObjectCheck c = gctest::check_objects_left_out(input, r.out, checker_names(o));
+      CHECK(c.message == "");
+      CHECK(c.left_out > 0);
+      CHECK(c.kept > 0);
+    }
+  }
+}
+
+TEST_CASE("gc-objects --exclude --from-layer: a part that came loose is left out from that layer on", "[gc-objects]") {
+  const std::string path = fixture_path("prusa_pegs_0.2_klipper_zhop_labels.gcode");
+  const std::string input = read_file(path);
+  auto r = run(gctest::tool_command("gc-objects", "--exclude pegs.stl_8,3 --from-layer 30 " + gctest::quote(path)));
+  REQUIRE(r.status == 0);
+  const gctest::ObjectCheck c = gctest::check_objects_left_out(input, r.out, {"7", "3"}, 30);
+  CHECK(c.message == "");
+  CHECK(c.left_out > 0);
+}
+
+TEST_CASE("gc-objects: an unknown object is a usage error listing the objects; all of them is refused", "[gc-objects]") {
+  const std::string path = fixture_path("prusa_pegs_0.2_klipper_zhop_labels.gcode");
+  auto r = run(gctest::tool_command("gc-objects", "--exclude 99 " + gctest::quote(path)));
+  CHECK(r.status == 2);
+  CHECK_THAT(r.err, Catch::Contains("no object '99'") && Catch::Contains("pegs.stl_12"));
+  CHECK(r.out.empty());
+  r = run(gctest::tool_command("gc-objects", "--exclude 0,1,2,3,4,5,6,7,8,9,10,11 " + gctest::quote(path)));
+  CHECK(r.status == 1);
+  CHECK_THAT(r.err, Catch::Contains("all 12 objects"));
+  r = run(gctest::tool_command("gc-objects", "--exclude 0 " + gctest::quote(fixture_path("prusa_cube_0.2_mk3s_rel_zhop.gcode"))));
+  CHECK(r.status == 1);
+  CHECK_THAT(r.err, Catch::Contains("has one object"));
+}

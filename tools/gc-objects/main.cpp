@@ -1,0 +1,82 @@
+// gc-objects: see the objects of a plate, leave some of them out exactly, or
+// label them for the firmware (the objects room: lib/include/gcode/objects/).
+#include <fmt/format.h>
+
+#include "gcode/cli/filter.hpp"
+#include "gcode/cli/objects_options.hpp"
+#include "gcode/cli/tool.hpp"
+#include "gcode/objects/object_excluder.hpp"
+#include "gcode/objects/object_report.hpp"
+#include "gcode/objects/object_table.hpp"
+
+namespace {
+
+using gcode::cli::InputError;
+using Options = gcode::cli::ObjectsToolOptions;
+
+// The whole file read once: its objects.
+gcode::ObjectTable read_table(gcode::cli::Filter& run) {
+  run.input().make_seekable();
+  gcode::EstimatorOptions estimate;
+  estimate.limits.load_file_config(run.input().fd());
+  run.input().rewind();
+  gcode::ObjectTableStage stage(estimate);
+  run.prepass(stage, [&](const gcode::Pipeline& p) {
+    if (p.bytes_read() == 0) throw InputError(run.input().name() + ": empty input");
+    stage.name_features(p.tracker());
+  });
+  return stage.table();
+}
+
+int list(const Options& o, gcode::cli::Filter& run) {
+  const gcode::ObjectTable table = read_table(run);
+  if (table.objects.empty()) throw InputError(run.input().name() + ": no object labels found");
+  std::string text;
+  if (o.json) {
+    text = gcode::object_table_json(table);
+  } else if (o.svg) {
+    const gcode::PrintArea printer = run.print_area();
+    text = gcode::object_table_svg(table, printer.has_bed ? printer.bed.outline() : gcode::Polygon{});
+  } else {
+    text = gcode::object_table_text(table, run.input().name());
+  }
+  gcode::cli::write_output_file(o.io.output, [&](gcode::OutputBuffer& out) { out.write(text); });
+  return 0;
+}
+
+int exclude(const Options& o, gcode::cli::Filter& run, gcode::Diagnostics& diag) {
+  const gcode::ObjectTable table = read_table(run);
+  const std::vector<int> chosen = gcode::cli::chosen_objects(table, o.exclude, run.input().name());
+  std::string names;
+  for (int i : chosen) names += (names.empty() ? "" : ", ") + table.objects[static_cast<std::size_t>(i)].name;
+  gcode::ExcludeOptions options;
+  options.note = "; gc-objects: back on the path after left-out objects";
+  gcode::ObjectExcluder excluder(run.pipeline().precision(), options);
+  for (int i : chosen) excluder.exclude(i, o.from_layer);
+  run.add(excluder);
+  run.write();
+  diag.info(fmt::format("left out {} ({} moves, {} extrusions)", names, excluder.dropped_lines(), excluder.dropped_extrusions()));
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  gcode::cli::Tool tool(
+      "gc-objects",
+      "gc-objects: list the objects of a plate (id, name, layers, box, filament, time), draw them, or leave\n"
+      "some of them out of the G-code exactly: the other objects' lines byte for byte, the nozzle primed as\n"
+      "in the input before each kept extrusion, the travel straight to the next kept object.\n"
+      "Objects come from the slicer's labels: PrusaSlicer, SuperSlicer, Slic3r, Cura, ideaMaker, Bambu\n"
+      "Studio, OrcaSlicer, M486, Klipper's EXCLUDE_OBJECT.\n"
+      "  gc-objects plate.gcode                       the table\n"
+      "  gc-objects --exclude 3,pegs.stl_7 plate.gcode -o rest.gcode");
+  gcode::cli::add_objects_options(tool, o);
+  return tool.run(argc, argv, [&] {
+    gcode::Diagnostics diag = tool.diagnostics(o.io);
+    gcode::cli::Filter run(o.io);
+    if (!o.exclude.empty()) return exclude(o, run, diag);
+    return list(o, run);
+  });
+}
