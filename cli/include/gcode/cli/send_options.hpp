@@ -29,6 +29,7 @@ struct SendOptions {
   std::string resume;       // --resume [JOURNAL]
   std::string pause_on;     // M0,M1,...
   std::string cancel_gcode;
+  std::string exclude;      // --exclude ID[,ID...]
   bool no_pace = false;
   bool list_ports = false;
   bool delta = false;       // --delta: no resume after a reset

@@ -36,6 +36,8 @@ std::string_view control_verb_name(ControlVerb verb) {
     case ControlVerb::Status: return "status";
     case ControlVerb::Swap: return "swap";
     case ControlVerb::Insert: return "insert";
+    case ControlVerb::CancelObject: return "cancel object";
+    case ControlVerb::Objects: return "objects";
     case ControlVerb::Unknown: return "unknown";
   }
   return "unknown";
@@ -62,11 +64,20 @@ ControlCommand parse_control_command(std::string_view line) {
       {"speed", ControlVerb::Speed, true},    {"gcode", ControlVerb::Gcode, true},
       {"cancel", ControlVerb::Cancel, false}, {"status", ControlVerb::Status, false},
       {"swap", ControlVerb::Swap, true},      {"insert", ControlVerb::Insert, true},
+      {"objects", ControlVerb::Objects, false},
   };
   for (const Name& n : kNames) {
     if (!iequals(verb, n.name)) continue;
     if (n.verb == ControlVerb::Pause && iequals(rest, "now")) {
       c.verb = ControlVerb::PauseNow;
+      return c;
+    }
+    if (n.verb == ControlVerb::Cancel && iequals(rest.substr(0, rest.find_first_of(" \t")), "object")) {
+      // cancel object ID|NAME ...: one object, not the print.
+      std::string_view objects = trim(rest.substr(6));
+      if (objects.empty()) return unknown("'cancel object' needs an id or a name (`objects` lists them)");
+      c.verb = ControlVerb::CancelObject;
+      c.argument = std::string(objects);
       return c;
     }
     if (!n.argument && !rest.empty()) return unknown(fmt::format("'{}' takes no argument: '{}'", n.name, line));

@@ -58,13 +58,17 @@ PrintControl::PrintControl(const PrintControlConfig& config, Sender& sender, Dia
       diag_(diagnostics),
       precision_(precision),
       user_speed_(speed_options(1, true, config), precision),
-      rush_(speed_options(std::max(1.0, config.rush), false, config), precision) {
+      rush_(speed_options(std::max(1.0, config.rush), false, config), precision),
+      objects_(diagnostics, precision) {
   config_.pause.method = PauseMethod::None;
+  objects_.exclude(config_.exclude, "--exclude");
   user_speed_.set_enabled(false);
   rush_.set_enabled(false);
 }
 
-void PrintControl::add_stages(Pipeline& pipeline) {
+void PrintControl::add_stages(Pipeline& pipeline, std::uint64_t line_offset) {
+  // First: what the excluder writes to catch up is sped up like the rest.
+  objects_.add_stage(pipeline, line_offset);
   pipeline.add(user_speed_);
   pipeline.add(rush_);
 }
@@ -586,6 +590,12 @@ void PrintControl::command(const ControlCommand& c) {
       if (on_status) on_status();
       break;
     case ControlVerb::Insert: insert_file(c.argument); break;
+    case ControlVerb::CancelObject:
+      if (state_ != PrintState::Cancelling) objects_.cancel(c.argument);
+      break;
+    case ControlVerb::Objects:
+      for (const std::string& l : objects_.listing()) diag_.report(l);
+      break;
     case ControlVerb::Swap: request_swap(c.argument); break;
     case ControlVerb::Unknown: diag_.warn(0, fmt::format("control: {}", c.argument)); break;
   }

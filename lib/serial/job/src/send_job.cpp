@@ -13,6 +13,7 @@
 
 #include "gcode/core/file_io.hpp"
 #include "gcode/core/number.hpp"
+#include "gcode/core/text.hpp"
 #include "gcode/pipeline/pipeline.hpp"
 #include "gcode/report/layer_time.hpp"
 #include "gcode/serial/job/send_resume.hpp"
@@ -78,6 +79,7 @@ void print_summary(const Sender& sender, const PrinterLink& link, const PrintCon
     diag.report(fmt::format("pause ({}): asked in layer {}, paused {} after input line {}{}", p.request, p.layer, where,
                             p.input_line, latency));
   }
+  for (const std::string& l : control.objects().summary()) diag.report(l);
   const std::string far_end = link.summary();
   if (!far_end.empty()) diag.report(far_end);
 }
@@ -289,6 +291,8 @@ void back_into_control(PrintControl& control, const ResumeStart& start, bool qui
   double speed = 1;
   if (!parse_number(start.point.get("speed", "1"), speed)) speed = 1;
   control.restore_speed(speed);
+  // The objects cancelled stay cancelled.
+  control.objects().exclude(split_lines(start.point.get("cancelled")), "the journal", true);
   if (start.pause_not_begun && !quiet)
     diag.report(fmt::format("the printer took none of the pause block gc-send was sending when it stopped: printing "
                             "on after input line {} (pause again if wanted)",

@@ -71,6 +71,7 @@ void SendJournal::numbered(const NumberedCommand& c) {
   point_.set("paused", live_.paused ? "1" : "0");
   point_.set("swap", live_.swap);
   point_.set("swapline", std::to_string(live_.swap_line));
+  point_.set("cancelled", live_.cancelled);
   write_track_fields(*c.track, c.restore, c.drains, point_);
   writer_.sent(static_cast<std::uint64_t>(c.n), point_);
 }

@@ -33,6 +33,8 @@ enum class ControlVerb : std::uint8_t {
   Status,    // one status line
   Swap,      // swap FILE
   Insert,    // insert FILE
+  CancelObject,  // cancel object ID|NAME ...: leave objects out
+  Objects,   // list the objects with their state
   Unknown,   // anything else (reported, never fatal)
 };
 
@@ -42,7 +44,8 @@ struct ControlCommand {
   double number = 0;     // speed F
 };
 
-// Parses one line ("pause", "pause now", "speed 1.5", "gcode G1 Z10", ...);
+// Parses one line ("pause", "pause now", "speed 1.5", "gcode G1 Z10",
+// "cancel object 3 pegs.stl_5", ...);
 // case-insensitive verbs, blanks around ignored. A line it cannot read (a
 // missing or bad argument) is Unknown with the reason in `argument`.
 ControlCommand parse_control_command(std::string_view line);

@@ -177,6 +177,7 @@ class SendSession : private Stage {
   PrefixHash input_hash_;            // the input's bytes fed (or printed before a resume)
   std::uint64_t checkpointed_ = 0;  // bytes of the journal's newest checkpoint
   std::uint64_t fed_lines_ = 0;     // input lines fed to the pipeline (a resume's not counted)
+  PrintedObjects printed_objects_;  // a resume: the objects the printed part named
 };
 
 }  // namespace gcode::serial

@@ -30,6 +30,7 @@ struct LiveControl {
   bool paused = false;           // a pause block went out: a resume goes back into the pause
   std::string swap;              // the swapped-in file ("" none)
   std::uint64_t swap_line = 0;   // input lines printed before it joined
+  std::string cancelled;         // the objects left out, one a line (object_cancel.hpp)
 };
 
 class SendJournal {
