@@ -15,7 +15,8 @@ namespace test_gc_objects {
 
 // The fixtures with object labels of several objects, each slicer's.
 const char* const kLabelled[] = {"prusa_pegs_0.2_klipper_zhop_labels.gcode", "objects/cura_3objects_abs_zhop_support.gcode",
-                                 "objects/cura_3objects_rel_fwretract.gcode"};
+                                 "objects/cura_3objects_rel_fwretract.gcode", "objects/prusa_3objects_abs_wipe_zhop_support.gcode",
+                                 "objects/prusa_3objects_rrf_fwretract.gcode", "objects/prusa_cube_3copies_klipper_rel.gcode"};
 
 nlohmann::json objects_of(const std::string& path) {
   auto r = run(gctest::tool_command("gc-objects", "--json " + gctest::quote(path)));
@@ -89,4 +90,37 @@ TEST_CASE("gc-objects: an unknown object is a usage error listing the objects; a
   r = run(gctest::tool_command("gc-objects", "--exclude 0 " + gctest::quote(fixture_path("prusa_cube_0.2_mk3s_rel_zhop.gcode"))));
   CHECK(r.status == 1);
   CHECK_THAT(r.err, Catch::Contains("has one object"));
+}
+
+namespace test_gc_objects {
+
+// Every line of the labelled blocks of `id` cut out (what a naive filter does).
+std::string cut_blocks(const std::string& input, const std::string& label) {
+  std::string out;
+  bool in = false;
+  std::size_t at = 0;
+  while (at < input.size()) {
+    std::size_t nl = input.find('\n', at);
+    if (nl == std::string::npos) nl = input.size() - 1;
+    const std::string line = input.substr(at, nl + 1 - at);
+    if (line.rfind("; printing object " + label, 0) == 0) in = true;
+    if (!in) out += line;
+    if (line.rfind("; stop printing object " + label, 0) == 0) in = false;
+    at = nl + 1;
+  }
+  return out;
+}
+
+}  // namespace test_gc_objects
+
+TEST_CASE("object checker: it catches a cut of whole blocks in absolute E, and the input left as it was", "[gc-objects]") {
+  const std::string input = read_file(fixture_path("objects/prusa_3objects_abs_wipe_zhop_support.gcode"));
+  gctest::ObjectCheck c = gctest::check_objects_left_out(input, cut_blocks(input, "tshape id:1"), {"1"});
+  CHECK_FALSE(c.ok);
+  CHECK_THAT(c.message, Catch::Contains("extrusion"));
+  c = gctest::check_objects_left_out(input, input, {"1"});
+  CHECK_FALSE(c.ok);
+  c = gctest::check_objects_left_out(input, input, {"7"});
+  CHECK(c.ok);
+  CHECK(c.left_out == 0);
 }
