@@ -5,6 +5,7 @@
 #include "gcode/cli/filter.hpp"
 #include "gcode/cli/objects_options.hpp"
 #include "gcode/cli/tool.hpp"
+#include "gcode/objects/label_writer.hpp"
 #include "gcode/objects/object_excluder.hpp"
 #include "gcode/objects/object_report.hpp"
 #include "gcode/objects/object_table.hpp"
@@ -59,6 +60,18 @@ int exclude(const Options& o, gcode::cli::Filter& run, gcode::Diagnostics& diag)
   return 0;
 }
 
+int label(const Options& o, gcode::cli::Filter& run, gcode::Diagnostics& diag) {
+  const gcode::ObjectTable table = read_table(run);
+  if (table.objects.empty()) throw InputError(run.input().name() + ": no object labels found");
+  if (table.dialect == gcode::LabelDialect::Klipper || table.dialect == gcode::LabelDialect::Marlin)
+    throw InputError(fmt::format("{} has firmware labels already ({})", run.input().name(), gcode::dialect_name(table.dialect)));
+  gcode::LabelWriter writer(table, o.label == "klipper" ? gcode::FirmwareLabels::Klipper : gcode::FirmwareLabels::Marlin);
+  run.add(writer);
+  run.write();
+  diag.info(fmt::format("labelled {} objects for {}", table.objects.size(), o.label));
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -71,12 +84,14 @@ int main(int argc, char** argv) {
       "Objects come from the slicer's labels: PrusaSlicer, SuperSlicer, Slic3r, Cura, ideaMaker, Bambu\n"
       "Studio, OrcaSlicer, M486, Klipper's EXCLUDE_OBJECT.\n"
       "  gc-objects plate.gcode                       the table\n"
-      "  gc-objects --exclude 3,pegs.stl_7 plate.gcode -o rest.gcode");
+      "  gc-objects --exclude 3,pegs.stl_7 plate.gcode -o rest.gcode\n"
+      "  gc-objects --label klipper plate.gcode -o labelled.gcode");
   gcode::cli::add_objects_options(tool, o);
   return tool.run(argc, argv, [&] {
     gcode::Diagnostics diag = tool.diagnostics(o.io);
     gcode::cli::Filter run(o.io);
     if (!o.exclude.empty()) return exclude(o, run, diag);
+    if (!o.label.empty()) return label(o, run, diag);
     return list(o, run);
   });
 }

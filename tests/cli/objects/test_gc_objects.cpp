@@ -124,3 +124,35 @@ TEST_CASE("object checker: it catches a cut of whole blocks in absolute E, and t
   CHECK(c.ok);
   CHECK(c.left_out == 0);
 }
+
+TEST_CASE("gc-objects --label: Klipper's and Marlin's labels name the same objects, and they can be left out by them",
+          "[gc-objects]") {
+  const std::string dir = gctest::temp_dir();
+  for (const char* name : kLabelled) {
+    const std::string path = fixture_path(name);
+    const nlohmann::json slicer = objects_of(path);
+    for (const char* kind : {"klipper", "marlin"}) {
+      INFO(name << " labelled for " << kind);
+      const std::string labelled = dir + "/" + kind + ".gcode";
+      auto r = run(gctest::tool_command("gc-objects", std::string("--label ") + kind + " " + gctest::quote(path) + " -o " + labelled));
+      REQUIRE(r.status == 0);
+      const nlohmann::json firmware = objects_of(labelled);
+      REQUIRE(firmware.size() == slicer.size());
+      for (std::size_t i = 0; i < slicer.size(); ++i) {
+        CHECK(firmware[i]["bbox"] == slicer[i]["bbox"]);
+        CHECK(firmware[i]["filament_mm"] == slicer[i]["filament_mm"]);
+      }
+      const std::string text = read_file(labelled);
+      const auto& o = firmware[firmware.size() / 2];
+      r = run(gctest::tool_command("gc-objects", "--exclude " + gctest::quote(o["id"].get<std::string>()) + " " + labelled));
+      REQUIRE(r.status == 0);
+      const gctest::ObjectCheck c = gctest::check_objects_left_out(text, r.out, checker_names(o));
+      CHECK(c.message == "");
+      CHECK(c.left_out > 0);
+    }
+  }
+  // A file labelled for the firmware already is refused.
+  auto r = run(gctest::tool_command("gc-objects", "--label klipper " + dir + "/marlin.gcode"));
+  CHECK(r.status == 1);
+  CHECK_THAT(r.err, Catch::Contains("firmware labels already"));
+}
