@@ -4,7 +4,7 @@
 # planted fault of every kind):
 #
 #   lib/   libgcode, in rooms (docs/architecture.md, "The one-way rule"):
-#          core; pipeline; transform and report; litho and serial
+#          core; pipeline; transform and report; litho, objects and serial
 #   cli/   libgcode_cli, the command-line front end, on top of all of them
 #
 #  * a file of a room includes headers of its own room and of the rooms it
@@ -28,9 +28,10 @@ declare -A uses=(
   [transform]="core pipeline"
   [report]="core pipeline"
   [litho]="core pipeline report"
-  [serial]="core pipeline transform report"
+  [objects]="core pipeline transform report"
+  [serial]="core pipeline transform report objects"
   [procedural]="core"
-  [cli]="core pipeline transform report litho serial procedural"
+  [cli]="core pipeline transform report litho serial procedural objects"
 )
 
 # Prints "LAYER PATH" for every file of the library and the front end.

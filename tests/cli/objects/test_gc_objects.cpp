@@ -156,3 +156,33 @@ TEST_CASE("gc-objects --label: Klipper's and Marlin's labels name the same objec
   CHECK(r.status == 1);
   CHECK_THAT(r.err, Catch::Contains("firmware labels already"));
 }
+
+TEST_CASE("gc-objects: a file without labels, objects from their footprints, each left out in turn", "[gc-objects]") {
+  // The plate of objects/README.md: three 10 mm cubes placed by make_amf.py.
+  const std::vector<std::string> boxes = {"box:94.5,94.5,105.5,105.5", "box:114.5,119.5,125.5,130.5", "box:134.5,94.5,145.5,105.5"};
+  for (const char* name : {"objects/slic3r_3objects_abs_skirt_unlabelled.gcode", "objects/slic3r_3objects_rel_lift_wipe_unlabelled.gcode"}) {
+    const std::string path = fixture_path(name);
+    const std::string input = read_file(path);
+    const nlohmann::json objects = objects_of(path);
+    REQUIRE(objects.size() == 3);
+    for (std::size_t i = 0; i < objects.size(); ++i) {
+      INFO(name << " without footprint " << i);
+      CHECK(objects[i]["source"] == "footprint");
+      auto r = run(gctest::tool_command("gc-objects", "--exclude " + std::to_string(i) + " " + gctest::quote(path)));
+      REQUIRE(r.status == 0);
+      const gctest::ObjectCheck c = gctest::check_objects_left_out(input, r.out, {boxes[i]});
+      CHECK(c.message == "");
+      CHECK(c.left_out > 0);
+    }
+  }
+}
+
+TEST_CASE("gc-objects: footprints that later extrusions join cannot be cut (exit 1, saying where)", "[gc-objects]") {
+  // A T on one stem with support: its support pillars stand apart on the
+  // first layer, and the bar joins them higher up.
+  const std::string path = fixture_path("slic3r_tshape_0.2_support_unmarked.gcode");
+  auto r = run(gctest::tool_command("gc-objects", "--exclude 0 " + gctest::quote(path)));
+  CHECK(r.status == 1);
+  CHECK_THAT(r.err, Catch::Contains("cannot be cut") && Catch::Contains("line "));
+  CHECK(r.out.empty());
+}
