@@ -4,9 +4,9 @@
 # the pages stay: a renamed file or class makes this fail, not a reader.
 #
 # In every `code span` of the pages:
-#  * a path (`lib/src/serial/sender.cpp`, `tools/gc-send/`) exists; a short
-#    one (`core/line.hpp`, `serial/sender.cpp`) exists under the library's
-#    include or source folders; a bare file name (`stage.hpp`) somewhere in
+#  * a path (`lib/serial/sender/src/sender.cpp`, `tools/gc-send/`) exists; a short
+#    one (`core/line.hpp`, `serial/sender/sender.cpp`) exists under the library's
+#    include or source folders (a wing's: lib/serial/sender/); a bare file name (`stage.hpp`) somewhere in
 #    the sources; spans with a placeholder (<name>, NAME) or a blank are
 #    commands or patterns and are skipped, and so are absolute paths
 #    (`/dev/serial/by-id/`) and build trees (`build-asan/`), which are
@@ -51,6 +51,13 @@ path_exists() {
   done
   # cli/src/tool.cpp for a short "cli/tool.cpp"
   [ -e "cli/src/${p#cli/}" ] && return 0
+  # gc-send's wings: "serial/sender/sender.hpp", "serial/sender/sender.cpp", "serial/sender/"
+  if [[ $p == serial/* ]]; then
+    local wing=${p#serial/}
+    wing=${wing%%/*}
+    [ -e "lib/serial/$wing/include/gcode/$p" ] && return 0
+    [ -e "lib/serial/$wing/src/${p#serial/"$wing"/}" ] && return 0
+  fi
   return 1
 }
 
@@ -137,7 +144,7 @@ if [ -f "$parts" ]; then
     stem=${header##*/}
     stem=${stem%.hpp}
     [ -n "${named[$stem]+set}" ] || fail "$parts: the parts table does not name $header: add \`$stem\` to its room's row"
-  done < <(find lib/include/gcode cli/include/gcode -mindepth 2 -name '*.hpp' 2>/dev/null | sort)
+  done < <(find lib/include/gcode lib/serial/*/include/gcode cli/include/gcode -mindepth 2 -name '*.hpp' 2>/dev/null | sort)
 fi
 
 if [ "$failures" -gt 0 ]; then
