@@ -15,10 +15,9 @@ std::vector<std::string> klipper_names(const ObjectTable& table) {
     return s;
   };
   for (const PlateObject& o : table.objects) names.push_back(clean(o.name));
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    const bool shared = std::count(names.begin(), names.end(), clean(table.objects[i].name)) > 1;
-    if (shared) names[i] = clean(table.objects[i].name + "_id_" + table.objects[i].id);
-  }
+  const std::vector<std::string> plain = names;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (std::count(plain.begin(), plain.end(), plain[i]) > 1) names[i] = clean(table.objects[i].name + "_id_" + table.objects[i].id);
   return names;
 }
 
