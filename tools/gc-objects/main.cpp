@@ -2,6 +2,8 @@
 // label them for the firmware (the objects room: lib/include/gcode/objects/).
 #include <fmt/format.h>
 
+#include <optional>
+
 #include "gcode/cli/filter.hpp"
 #include "gcode/cli/objects_options.hpp"
 #include "gcode/cli/tool.hpp"
@@ -24,12 +26,15 @@ struct Plate {
   std::vector<bool> cuttable;
 };
 
-Plate read_plate(gcode::cli::Filter& run) {
+// `listing`: the times and outlines too (most of the work); `outlines`: those.
+Plate read_plate(gcode::cli::Filter& run, bool listing, bool outlines = false) {
   run.input().make_seekable();
   gcode::EstimatorOptions estimate;
   estimate.limits.load_file_config(run.input().fd());
   run.input().rewind();
-  gcode::ObjectTableStage labels(estimate);
+  std::optional<gcode::ObjectTableStage> table;
+  gcode::ObjectTableStage& labels =
+      listing ? table.emplace(estimate) : table.emplace(gcode::ObjectTableStage::Untimed{.outlines = outlines});
   run.prepass(labels, [&](const gcode::Pipeline& p) {
     if (p.bytes_read() == 0) throw InputError(run.input().name() + ": empty input");
     labels.name_features(p.tracker());
@@ -44,7 +49,7 @@ Plate read_plate(gcode::cli::Filter& run) {
 }
 
 int list(const Options& o, gcode::cli::Filter& run, gcode::Diagnostics& diag) {
-  const Plate plate = read_plate(run);
+  const Plate plate = read_plate(run, true);
   if (plate.table.objects.empty()) throw InputError(run.input().name() + ": no objects found (no labels, no extrusion)");
   for (const std::string& p : gcode::describe(plate.problems)) diag.warn(p);
   std::string text;
@@ -61,7 +66,7 @@ int list(const Options& o, gcode::cli::Filter& run, gcode::Diagnostics& diag) {
 }
 
 int exclude(const Options& o, gcode::cli::Filter& run, gcode::Diagnostics& diag) {
-  const Plate plate = read_plate(run);
+  const Plate plate = read_plate(run, false);
   const std::vector<int> chosen = gcode::cli::chosen_objects(plate.table, o.exclude, run.input().name());
   std::string names;
   for (int i : chosen) {
@@ -83,7 +88,7 @@ int exclude(const Options& o, gcode::cli::Filter& run, gcode::Diagnostics& diag)
 }
 
 int label(const Options& o, gcode::cli::Filter& run, gcode::Diagnostics& diag) {
-  const Plate plate = read_plate(run);
+  const Plate plate = read_plate(run, false, true);
   const gcode::ObjectTable& table = plate.table;
   if (table.objects.empty()) throw InputError(run.input().name() + ": no objects found (no labels, no extrusion)");
   if (!plate.blocks.blocks.empty()) throw InputError(run.input().name() + ": no object labels to follow (objects from footprints)");
