@@ -36,7 +36,8 @@ void ObjectExcluder::layer(const LayerInfo& info, const MachineState& before, Em
 }
 
 void ObjectExcluder::line(const TrackedLine& t, Emitter& out) {
-  const int object = tracker_.line(t.line);
+  const int object = blocks_ != nullptr ? blocks_->object_at(t.raw.number, block_cursor_) : tracker_.line(t.line);
+  current_ = object;
   const double in_before = in_retracted_;
   in_retracted_ = RetractionTracker::after(in_retracted_, t.move);
   last_ = t.state;

@@ -16,7 +16,9 @@ int ObjectTable::find(const std::string& id_or_name) const {
   return -1;
 }
 
-ObjectTableStage::ObjectTableStage(const EstimatorOptions& estimate) : estimator_(estimate, this) {}
+ObjectTableStage::ObjectTableStage(const EstimatorOptions& estimate) { estimator_.emplace(estimate, static_cast<TimeSink*>(this)); }
+
+ObjectTableStage::ObjectTableStage(Untimed what) : outlines_(what.outlines) {}
 
 void ObjectTableStage::on_time(std::int64_t tag, double seconds) {
   const auto i = static_cast<std::size_t>(tag);
@@ -31,8 +33,10 @@ void ObjectTableStage::layer(const LayerInfo& info, const MachineState& before, 
 
 void ObjectTableStage::line(const TrackedLine& t, Emitter& out) {
   const int object = tracker_.line(t.line);
-  estimator_.set_tag(object + 1);
-  estimator_.add(t.line, t.move);
+  if (estimator_) {
+    estimator_->set_tag(object + 1);
+    estimator_->add(t.line, t.move);
+  }
   if (t.move.extruding && t.region == Region::Layer) {
     if (object < 0) {
       table_.outside.filament_mm += t.move.filament;
@@ -48,15 +52,17 @@ void ObjectTableStage::line(const TrackedLine& t, Emitter& out) {
       o.filament_mm += t.move.filament;
       o.box.add(t.move.start[kX], t.move.start[kY]);
       o.box.add(t.move.end[kX], t.move.end[kY]);
-      hulls_[i].add(t.move.start[kX], t.move.start[kY]);
-      hulls_[i].add(t.move.end[kX], t.move.end[kY]);
+      if (outlines_) {
+        hulls_[i].add(t.move.start[kX], t.move.start[kY]);
+        hulls_[i].add(t.move.end[kX], t.move.end[kY]);
+      }
     }
   }
   out.pass(t);
 }
 
 void ObjectTableStage::finish(Emitter& out) {
-  estimator_.finish();
+  if (estimator_) estimator_->finish();
   const auto& names = tracker_.names();
   table_.objects.resize(names.size());
   hulls_.resize(names.size());

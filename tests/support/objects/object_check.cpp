@@ -78,6 +78,12 @@ class Replay {
       if (!any) pos[0] = pos[1] = pos[2] = 0, e = 0;
     }
     if ((cmd == "G10" || cmd == "G11") && code.size() == 3) fw = cmd == "G10";
+    if (cmd == "G28") {
+      const bool all = code.find_first_of("XYZ", 3) == std::string_view::npos;
+      const char axes[3] = {'X', 'Y', 'Z'};
+      for (int a = 0; a < 3; ++a)
+        if (all || code.find(axes[a], 3) != std::string_view::npos) pos[a] = 0;
+    }
     if (cmd == "G0" || cmd == "G1" || cmd == "G2" || cmd == "G3" || cmd == "G00" || cmd == "G01") move(code);
   }
 
@@ -168,7 +174,23 @@ std::vector<Extrusion> replay(std::string_view text, Replay& r) {
   return r.extrusions;
 }
 
-bool left_out_object(const std::string& object, const std::vector<std::string>& left_out) {
+// "box:x0,y0,x1,y1": both ends of the extrusion within it (a file without labels).
+bool in_box(const Extrusion& x, const std::string& spec) {
+  double b[4] = {0, 0, 0, 0};
+  const char* p = spec.c_str() + 4;
+  for (double& v : b) {
+    char* end = nullptr;
+    v = std::strtod(p, &end);
+    p = *end == ',' ? end + 1 : end;
+  }
+  return x.start[0] >= b[0] && x.start[0] <= b[2] && x.start[1] >= b[1] && x.start[1] <= b[3] && x.end[0] >= b[0] &&
+         x.end[0] <= b[2] && x.end[1] >= b[1] && x.end[1] <= b[3];
+}
+
+bool left_out_object(const Extrusion& x, const std::vector<std::string>& left_out) {
+  for (const std::string& l : left_out)
+    if (l.rfind("box:", 0) == 0 && in_box(x, l)) return true;
+  const std::string& object = x.object;
   if (object.empty()) return false;
   const std::size_t bar = object.find('|');
   const std::string name = object.substr(0, bar), id = object.substr(bar + 1);
@@ -199,7 +221,7 @@ ObjectCheck check_objects_left_out(std::string_view input, std::string_view outp
   const std::vector<Extrusion> got = replay(output, out);
   std::vector<Extrusion> want;
   for (const Extrusion& x : all) {
-    if (left_out_object(x.object, left_out) && x.layer >= from_layer) {
+    if (left_out_object(x, left_out) && x.layer >= from_layer) {
       ++result.left_out;
     } else {
       want.push_back(x);

@@ -1,6 +1,6 @@
 #pragma once
 // The independent checker for gc-objects --exclude. It shares no code with
-// the tool or the library: its own small G-code reader (G0-G3 end points,
+// the tool or the library: its own small G-code reader (G0-G3 end points, G28,
 // G90/G91, M82/M83, G92, G10/G11, G20/G21) and its own reading of the
 // object labels of every slicer. It replays the input and the output and
 // proves:
@@ -29,7 +29,8 @@ struct ObjectCheck {
 
 // `left_out`: the left-out objects, each by its label's number where the
 // label has one (PrusaSlicer's "id.copy" for copies past the first), else
-// by its name (Cura's meshes, Klipper's NAME=).
+// by its name (Cura's meshes, Klipper's NAME=); in a file without labels,
+// "box:X0,Y0,X1,Y1": the extrusions with both ends in that box.
 // `from_layer`: 0 (everywhere) or the first layer left out.
 ObjectCheck check_objects_left_out(std::string_view input, std::string_view output, const std::vector<std::string>& left_out,
                                    int from_layer = 0);

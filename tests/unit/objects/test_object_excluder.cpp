@@ -17,7 +17,7 @@ namespace test_object_excluder {
 
 // Two objects, absolute E, PrusaSlicer's labels: A, then B (with a G92 E0
 // inside), then A again.
-const char* const kPlate =
+const char* const kExcludePlate =
     "M82\n"
     "G90\n"
     "G92 E0\n"
@@ -59,7 +59,7 @@ TEST_CASE("object excluder: a left-out block's moves go, its G92 stays, and the 
   gcode::ObjectExcluder excluder(p.precision());
   excluder.exclude(1);
   p.add(excluder);
-  const std::string out = gctest::run_stages(p, kPlate);
+  const std::string out = gctest::run_stages(p, kExcludePlate);
   CHECK(out ==
         "M82\nG90\nG92 E0\n;LAYER_CHANGE\n;Z:0.2\nG1 Z0.2 F600\n"
         "; printing object A id:0 copy 0\nG1 X0 Y0 F6000\nG1 E1 F2400\nG1 X10 Y0 E2 F1200\nG1 X10 Y10 E3\nG1 E2 F2400\nG1 Z0.6 F600\n"
@@ -82,7 +82,7 @@ TEST_CASE("object excluder: switched off in the middle of its block, the object 
   });
   p.add(cancel);
   p.add(excluder);
-  const std::string out = gctest::run_stages(p, kPlate);
+  const std::string out = gctest::run_stages(p, kExcludePlate);
   // B's travel, lowering and unretraction went out; from its first
   // extrusion on nothing of it. The input travels to A retracted 1 mm: so
   // does the output, and G92 E puts absolute E back before A's unretraction.

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "gcode/objects/catch_up.hpp"
+#include "gcode/objects/footprints.hpp"
 #include "gcode/objects/object_tracker.hpp"
 #include "gcode/pipeline/stage.hpp"
 
@@ -37,10 +38,13 @@ class ObjectExcluder : public Stage {
   // Object `index` (ObjectTracker's numbering, the same as ObjectTable's)
   // is left out from layer `from_layer` on (0 or 1: from now).
   void exclude(int index, int from_layer = 0);
+  // Objects found from footprints (footprints.hpp): the object of each line
+  // from its blocks, not from labels. Before the first line.
+  void use_blocks(const ObjectBlocks* blocks) { blocks_ = blocks; }
   bool excluded(int index) const;
   // The object the last line belonged to (-1 for none), and the tracker
   // (names registered so far: a live stream may name objects only as it goes).
-  int current() const { return tracker_.current(); }
+  int current() const { return current_; }
   const ObjectTracker& tracker() const { return tracker_; }
   // A stream that goes on from lines read elsewhere (gc-send --resume reads
   // the labels of the printed part): the names, their numbering and the
@@ -58,6 +62,9 @@ class ObjectExcluder : public Stage {
   bool leaves_out(int object, int layer) const;
   void write(std::vector<std::string>& lines, Emitter& out);
   ObjectTracker tracker_;
+  const ObjectBlocks* blocks_ = nullptr;
+  std::size_t block_cursor_ = 0;
+  int current_ = -1;
   StreamCatchUp catch_up_;
   ExcludeOptions options_;
   std::vector<int> from_layer_;  // per object: 0 kept, else the first layer left out

@@ -52,6 +52,13 @@ struct ObjectTable {
 class ObjectTableStage : public Stage, private TimeSink {
  public:
   explicit ObjectTableStage(const EstimatorOptions& estimate = {});
+  // Only what a filter needs: without times or outlines, only `outlines`
+  // (Klipper's polygons) where asked. The estimator and the hulls are most
+  // of the table's work.
+  struct Untimed {
+    bool outlines = false;
+  };
+  explicit ObjectTableStage(Untimed what);
   void line(const TrackedLine& t, Emitter& out) override;
   void layer(const LayerInfo& info, const MachineState& before, Emitter& out) override;
   void finish(Emitter& out) override;
@@ -64,7 +71,8 @@ class ObjectTableStage : public Stage, private TimeSink {
  private:
   void on_time(std::int64_t tag, double seconds) override;
   ObjectTracker tracker_;
-  Estimator estimator_;
+  std::optional<Estimator> estimator_;
+  bool outlines_ = true;
   std::vector<HullBuilder> hulls_;
   std::vector<double> times_;  // [0]: outside, [i + 1]: object i
   std::vector<int> outside_features_;
