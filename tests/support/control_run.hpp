@@ -28,6 +28,7 @@ inline std::vector<Executed> read_log(const std::string& path) {
   gcode::RawLine raw;
   while (split.next(raw)) {
     std::string_view s = raw.text;
+    if (!s.empty() && s[0] == '#') continue;  // a note (a printer reset), no command
     std::size_t a = s.find('\t'), b = s.find('\t', a + 1);
     long long n = std::stoll(std::string(s.substr(a + 1, b - a - 1)));
     std::size_t c = b;

@@ -14,8 +14,12 @@
 // during the rushed rest of a layer, and while printing at full speed.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <set>
 #include <string>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include "control_run.hpp"
 #include "objects/object_check.hpp"
@@ -194,4 +198,99 @@ TEST_CASE("gc-send cancel object: unknown, repeated and last objects are refused
   CHECK(r.result.err.find("cancel object later part: no such object in the print") != std::string::npos);
   CHECK(r.result.err.find("later part") != std::string::npos);
   CHECK(r.result.err.find("cancelled (cancel object), not seen yet") != std::string::npos);
+}
+
+TEST_CASE("gc-send --resume after kill -9: the objects cancelled and excluded stay left out", "[gc-send][objects]") {
+  // gc-virtual-printer on a pty runs on when gc-send is killed; the resumed
+  // gc-send is given no --exclude: the journal's list is what leaves them out.
+  const std::string dir = gctest::temp_dir();
+  const std::string port = dir + "/printer", journal = dir + "/print.journal", fifo = dir + "/control.fifo";
+  const std::string first = dir + "/first.err";
+  const std::string send = quote(tool_path("gc-send")) + " -v --port " + quote(port) + " --journal " + quote(journal);
+  const std::string script =
+      quote(tool_path("gc-virtual-printer")) + " -q --time-scale 20 --instant-moves --heat-rate 1000 --link " +
+      quote(port) + " --log " + quote(dir + "/executed.log") + " & vp=$!\n" + gctest::wait_for_link(port) + send +
+      " --no-pace --exclude 6 --control " + quote(fifo) + " " + quote(pegs()) + " 2> " + quote(first) + " & gs=$!\n" +
+      gctest::wait_for_journal_start(journal) + gctest::wait_for_fifo(fifo) + "sleep 0.5; echo 'cancel object 2' > " +
+      quote(fifo) + "; sleep 1; kill -9 $gs; wait $gs 2>/dev/null\n" + send + " --no-control --resume " +
+      quote(journal) + " " + quote(pegs()) + "; s=$?; kill $vp; wait $vp; exit $s";
+  auto r = gctest::run(script);
+  const std::string first_err = gctest::read_file(first);
+  INFO(first_err);
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.err.find("resuming: ") != std::string::npos);
+  CHECK(r.err.find("objects left out: 6 (pegs.stl_7), 2 (pegs.stl_3)") != std::string::npos);
+  const auto executed = gctest::parse_executed_log(gctest::read_file(dir + "/executed.log"));
+  std::string text;
+  for (const std::string& c : executed.commands) text += c + "\n";
+  // Left out from the line the cancel took effect after, or from where the
+  // resumed print went on if the printer had not got that far.
+  const auto resumed_from = static_cast<std::uint64_t>(gctest::number_after(r.err, "; on from input line "));
+  REQUIRE(resumed_from > 0);
+  const std::uint64_t after = std::min(cancelled_after(first_err, "2"), resumed_from - 1);
+  const gctest::ObjectCheck c =
+      gctest::check_objects_left_out(printed_before(gctest::read_file(pegs()), "2", after), text, {"6", "2"});
+  INFO(c.message);
+  REQUIRE(c.ok);
+  CHECK(c.kept > 1000);
+}
+
+TEST_CASE("gc-send cancel object right before a printer reset: after the way back, nothing of it is printed again",
+          "[gc-send][objects]") {
+  // The reset's way back repeats what the printer lost: moves from before
+  // the cancel may run twice (they are the file's), none of the object's
+  // after it. Each extrusion that ends on the object's place on the plate
+  // must be one of its extrusions up to the line the cancel took effect after.
+  gctest::PauseRun r = gctest::send_with_control(
+      pegs(), std::string(kPegsPrinter) + ",reset@layer=6", "--no-pace",
+      std::string("at_layer 5; ") + kPrinting +
+          "; [ -n \"$id\" ] || id=9; echo \"cancel object $id\" > \"$F\"; echo \"cancelled id: $id\" >&2");
+  INFO(r.result.err);
+  REQUIRE(r.result.status == 0);
+  CHECK(r.result.err.find("1 reset") != std::string::npos);
+  const std::string id = cancelled_id(r.result.err);
+  const std::uint64_t after = cancelled_after(r.result.err, id);
+  // The object's extrusion ends up to there, and its box, from the file.
+  std::set<std::string> allowed;
+  double x0 = 1e9, y0 = 1e9, x1 = -1e9, y1 = -1e9;
+  gcode::MachineState s = gctest::initial_state(gctest::read_file(pegs()));
+  bool inside = false;
+  std::uint64_t n = 0;
+  auto key = [](const gcode::MachineState& m) {
+    return fmt::format("{:.3f} {:.3f} {:.3f}", m.position[gcode::kX], m.position[gcode::kY], m.position[gcode::kZ]);
+  };
+  for (const std::string& line : gctest::split_lines(gctest::read_file(pegs()))) {
+    ++n;
+    if (line.find("printing object ") != std::string::npos && line.find(" id:" + id + " copy") != std::string::npos)
+      inside = line.find("stop printing") == std::string::npos;
+    const gcode::MachineState before = s;
+    std::string_view text = line;
+    while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.remove_suffix(1);
+    const gcode::Line l = gcode::Line::parse(text);
+    s.apply(l);
+    if (!inside || !(l.is_g(1) || l.is_g(0)) || s.position[gcode::kE] <= before.position[gcode::kE]) continue;
+    if (s.position[gcode::kX] == before.position[gcode::kX] && s.position[gcode::kY] == before.position[gcode::kY]) continue;
+    x0 = std::min(x0, s.position[gcode::kX]);
+    y0 = std::min(y0, s.position[gcode::kY]);
+    x1 = std::max(x1, s.position[gcode::kX]);
+    y1 = std::max(y1, s.position[gcode::kY]);
+    if (n <= after) allowed.insert(key(s));
+  }
+  REQUIRE(x1 > x0);
+  gcode::MachineState p;
+  std::size_t on_place = 0;
+  for (const gctest::Executed& e : r.log) {
+    const gcode::MachineState before = p;
+    const gcode::Line l = gcode::Line::parse(e.command);
+    p.apply(l);
+    if (!(l.is_g(1) || l.is_g(0)) || p.position[gcode::kE] <= before.position[gcode::kE]) continue;
+    const double x = p.position[gcode::kX], y = p.position[gcode::kY];
+    if (x < x0 - 0.01 || x > x1 + 0.01 || y < y0 - 0.01 || y > y1 + 0.01) continue;
+    if (x == before.position[gcode::kX] && y == before.position[gcode::kY]) continue;
+    ++on_place;
+    INFO(e.command << " at " << key(p));
+    REQUIRE(allowed.count(key(p)) == 1);
+  }
+  CHECK(on_place > 0);
 }

@@ -66,10 +66,14 @@ void LiveExcluder::line(const TrackedLine& t, Emitter& out) {
   excluder_.line(t, out);
   // An object named by this line is left out from the next one on: the
   // label line itself moves nothing.
-  if (excluder_.tracker().names().size() > known_) {
-    owner_.named(*this, known_);
-    known_ = excluder_.tracker().names().size();
-  }
+  tell_owner();
+}
+
+void LiveExcluder::tell_owner() {
+  const std::size_t names = excluder_.tracker().names().size();
+  if (names <= known_) return;
+  owner_.named(*this, known_);
+  known_ = names;
 }
 
 void LiveExcluder::layer(const LayerInfo& info, const MachineState& before, Emitter& out) {
@@ -82,7 +86,7 @@ void ObjectCancel::add_stage(Pipeline& pipeline, std::uint64_t line_offset) {
   pipeline.add(*stage);
   stages_.push_back(std::move(stage));
   // A resume's objects, known from the printed part, are matched now.
-  if (!stages_.back()->excluder().tracker().names().empty()) named(*stages_.back(), 0);
+  stages_.back()->tell_owner();
 }
 
 bool ObjectCancel::matches(const std::string& term, const ObjectName& n) {

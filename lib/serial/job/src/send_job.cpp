@@ -292,7 +292,7 @@ void back_into_control(PrintControl& control, const ResumeStart& start, bool qui
   if (!parse_number(start.point.get("speed", "1"), speed)) speed = 1;
   control.restore_speed(speed);
   // The objects cancelled stay cancelled.
-  control.objects().exclude(split_lines(start.point.get("cancelled")), "the journal", true);
+  control.objects().exclude(split_lines(start.cancelled), "the journal", true);
   if (start.pause_not_begun && !quiet)
     diag.report(fmt::format("the printer took none of the pause block gc-send was sending when it stopped: printing "
                             "on after input line {} (pause again if wanted)",

@@ -149,6 +149,7 @@ ResumeStart begin_resume(const ResumeSource& source, const ProbeResult& probe, S
   const JournalEntry& from = source.journal.entries[r.plan.entry];
   r.last = static_cast<long long>(from.n);
   r.point = from.point;
+  r.cancelled = source.journal.entries.back().point.get("cancelled");
   r.next = probe.findings.expected_line;
   if (r.plan.condition == PrinterCondition::Reset) {
     // Numbered on after every number the journal used: one names one command.

@@ -70,6 +70,8 @@ class LiveExcluder final : public Stage {
   const ObjectExcluder& excluder() const { return excluder_; }
   // The last input line it read (numbered as the print's).
   std::uint64_t last_line() const { return last_line_; }
+  // Tells the owner of the objects named since it last did.
+  void tell_owner();
 
  private:
   ObjectCancel& owner_;
