@@ -22,6 +22,7 @@
 #include "gcode/serial/journal_point.hpp"
 #include "gcode/serial/port.hpp"
 #include "gcode/serial/send_journal.hpp"
+#include "gcode/serial/control_verbs.hpp"
 #include "gcode/serial/send_resume.hpp"
 #include "gcode/serial/send_session.hpp"
 #include "gcode/serial/virtual_link.hpp"
@@ -344,12 +345,11 @@ SendOutcome already_complete(const SendJob& job, const ResumeSource& source, con
   return {SendEnd::AlreadyFinished, {}};
 }
 
-// The control as the journal left it: the live speed, and the pause the
-// print stood in.
+// The control as the journal left it: what it keeps of the verbs (the
+// live speed), and the pause the print stood in.
 void back_into_control(PrintControl& control, const ResumeStart& start, bool quiet, Diagnostics& diag) {
-  double speed = 1;
-  if (!parse_number(start.point.get("speed", "1"), speed)) speed = 1;
-  control.restore_speed(speed);
+  for (const ControlVerb& verb : control_verbs())
+    if (!verb.journal_field.empty()) verb.restore(control, start.point.get(verb.journal_field));
   if (start.pause_not_begun && !quiet)
     diag.report(fmt::format("the printer took none of the pause block gc-send was sending when it stopped: printing "
                             "on after input line {} (pause again if wanted)",
