@@ -14,7 +14,7 @@
 #include <fmt/format.h>
 
 #include "gcode/core/firmware.hpp"
-#include "gcode/serial/control_verbs.hpp"
+#include "gcode/serial/control/control_verbs.hpp"
 #include "test_support.hpp"
 
 namespace test_extension_lists {

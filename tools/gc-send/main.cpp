@@ -7,9 +7,9 @@
 
 #include "gcode/cli/send_options.hpp"
 #include "gcode/cli/tool.hpp"
-#include "gcode/serial/control_verbs.hpp"
-#include "gcode/serial/port.hpp"
-#include "gcode/serial/send_job.hpp"
+#include "gcode/serial/control/control_verbs.hpp"
+#include "gcode/serial/job/send_job.hpp"
+#include "gcode/serial/link/port.hpp"
 #include "gcode/transform/custom_gcode.hpp"
 
 namespace {
