@@ -149,7 +149,11 @@ ResumeStart begin_resume(const ResumeSource& source, const ProbeResult& probe, S
   const JournalEntry& from = source.journal.entries[r.plan.entry];
   r.last = static_cast<long long>(from.n);
   r.point = from.point;
-  r.cancelled = source.journal.entries.back().point.get("cancelled");
+  // The objects cancelled by the time gc-send stopped (the journal's last
+  // line's: a cancel asked after the command the print goes on after counts
+  // too) are left out from where the print goes on.
+  if (const std::string* cancelled = source.journal.entries.back().point.find("cancelled"))
+    r.point.set("cancelled", *cancelled);
   r.next = probe.findings.expected_line;
   if (r.plan.condition == PrinterCondition::Reset) {
     // Numbered on after every number the journal used: one names one command.

@@ -44,15 +44,15 @@ TEST_CASE("object cancel: the objects a line names, by blanks, commas and quotes
 }
 
 TEST_CASE("object cancel: `cancel object` and `objects` are read, `cancel` alone stays the print's", "[object_cancel]") {
-  using gcode::serial::ControlVerb;
-  auto c = gcode::serial::parse_control_command("Cancel Object 3 \"a b\"");
-  CHECK(c.verb == ControlVerb::CancelObject);
+  using gcode::serial::parse_control_command;
+  auto c = parse_control_command("Cancel Object 3 \"a b\"");
+  CHECK(c.is("cancel object"));
   CHECK(c.argument == "3 \"a b\"");
-  CHECK(gcode::serial::parse_control_command("cancel").verb == ControlVerb::Cancel);
-  CHECK(gcode::serial::parse_control_command("cancel object").verb == ControlVerb::Unknown);
-  CHECK(gcode::serial::parse_control_command("cancel objectX").verb == ControlVerb::Unknown);
-  CHECK(gcode::serial::parse_control_command("objects").verb == ControlVerb::Objects);
-  CHECK(gcode::serial::parse_control_command("objects 3").verb == ControlVerb::Unknown);
+  CHECK(parse_control_command("cancel").is("cancel"));
+  CHECK(parse_control_command("cancel object").verb == nullptr);
+  CHECK(parse_control_command("cancel objectX").verb == nullptr);
+  CHECK(parse_control_command("objects").is("objects"));
+  CHECK(parse_control_command("objects 3").verb == nullptr);
 }
 
 TEST_CASE("object cancel: --exclude by name leaves every block of it out, by id too", "[object_cancel]") {

@@ -64,10 +64,6 @@ struct ResumeStart {
   // taken gc-send's closing M400 (every line of the input ran), or the
   // print was cancelled. `last` and `point` are the journal's last line's.
   std::string complete;
-  // The objects cancelled by the time gc-send stopped (the journal's last
-  // line's, one a line: a cancel asked after the command the print goes on
-  // after counts too): left out from where the print goes on.
-  std::string cancelled;
 };
 
 // Plans from what the printer said (`probe`, printer_probe.hpp), and skips
