@@ -117,6 +117,64 @@ void require_checked(const std::string& input, const std::vector<gctest::Execute
 const char* const kPrinting =
     "id=$(grep -o '\"id\": \"[^\"]*\", \"name\": \"[^\"]*\", \"state\": \"printing\"' \"$S\" | cut -d'\"' -f4)";
 
+// Where an object's extrusions end in the file: its box on the plate, and
+// the ends of those up to line `after`.
+struct ObjectPlace {
+  double x0 = 1e9, y0 = 1e9, x1 = -1e9, y1 = -1e9;
+  std::set<std::string> before;
+};
+
+std::string end_key(const gcode::MachineState& m) {
+  return fmt::format("{:.3f} {:.3f} {:.3f}", m.position[gcode::kX], m.position[gcode::kY], m.position[gcode::kZ]);
+}
+
+// Whether a line extrudes while it moves in XY.
+bool extrudes(const gcode::Line& l, const gcode::MachineState& before, const gcode::MachineState& after) {
+  return (l.is_g(1) || l.is_g(0)) && after.position[gcode::kE] > before.position[gcode::kE] &&
+         (after.position[gcode::kX] != before.position[gcode::kX] || after.position[gcode::kY] != before.position[gcode::kY]);
+}
+
+ObjectPlace place_of(const std::string& input, const std::string& id, std::uint64_t after) {
+  ObjectPlace p;
+  gcode::MachineState s = gctest::initial_state(input);
+  bool inside = false;
+  std::uint64_t n = 0;
+  for (const std::string& line : gctest::split_lines(input)) {
+    ++n;
+    if (line.find("printing object ") != std::string::npos && line.find(" id:" + id + " copy") != std::string::npos)
+      inside = line.find("stop printing") == std::string::npos;
+    std::string_view text = line;
+    while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.remove_suffix(1);
+    const gcode::MachineState before = s;
+    const gcode::Line l = gcode::Line::parse(text);
+    s.apply(l);
+    if (!inside || !extrudes(l, before, s)) continue;
+    p.x0 = std::min(p.x0, s.position[gcode::kX]);
+    p.y0 = std::min(p.y0, s.position[gcode::kY]);
+    p.x1 = std::max(p.x1, s.position[gcode::kX]);
+    p.y1 = std::max(p.y1, s.position[gcode::kY]);
+    if (n <= after) p.before.insert(end_key(s));
+  }
+  REQUIRE(p.x1 > p.x0);
+  return p;
+}
+
+// The printer's state after each extrusion it ran that ends on `place`.
+std::vector<gcode::MachineState> extrusions_on(const std::vector<gctest::Executed>& log, const ObjectPlace& place) {
+  std::vector<gcode::MachineState> found;
+  gcode::MachineState p;
+  for (const gctest::Executed& e : log) {
+    const gcode::MachineState before = p;
+    const gcode::Line l = gcode::Line::parse(e.command);
+    p.apply(l);
+    const double x = p.position[gcode::kX], y = p.position[gcode::kY];
+    if (extrudes(l, before, p) && x >= place.x0 - 0.01 && x <= place.x1 + 0.01 && y >= place.y0 - 0.01 &&
+        y <= place.y1 + 0.01)
+      found.push_back(p);
+  }
+  return found;
+}
+
 // gc-send on the pegs with `script` (which cancels one object and says
 // which on stderr), checked from the line gc-send says the cancel took
 // effect after.
@@ -251,46 +309,40 @@ TEST_CASE("gc-send cancel object right before a printer reset: after the way bac
   CHECK(r.result.err.find("1 reset") != std::string::npos);
   const std::string id = cancelled_id(r.result.err);
   const std::uint64_t after = cancelled_after(r.result.err, id);
-  // The object's extrusion ends up to there, and its box, from the file.
-  std::set<std::string> allowed;
-  double x0 = 1e9, y0 = 1e9, x1 = -1e9, y1 = -1e9;
-  gcode::MachineState s = gctest::initial_state(gctest::read_file(pegs()));
-  bool inside = false;
-  std::uint64_t n = 0;
-  auto key = [](const gcode::MachineState& m) {
-    return fmt::format("{:.3f} {:.3f} {:.3f}", m.position[gcode::kX], m.position[gcode::kY], m.position[gcode::kZ]);
-  };
-  for (const std::string& line : gctest::split_lines(gctest::read_file(pegs()))) {
-    ++n;
-    if (line.find("printing object ") != std::string::npos && line.find(" id:" + id + " copy") != std::string::npos)
-      inside = line.find("stop printing") == std::string::npos;
-    const gcode::MachineState before = s;
-    std::string_view text = line;
-    while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.remove_suffix(1);
-    const gcode::Line l = gcode::Line::parse(text);
-    s.apply(l);
-    if (!inside || !(l.is_g(1) || l.is_g(0)) || s.position[gcode::kE] <= before.position[gcode::kE]) continue;
-    if (s.position[gcode::kX] == before.position[gcode::kX] && s.position[gcode::kY] == before.position[gcode::kY]) continue;
-    x0 = std::min(x0, s.position[gcode::kX]);
-    y0 = std::min(y0, s.position[gcode::kY]);
-    x1 = std::max(x1, s.position[gcode::kX]);
-    y1 = std::max(y1, s.position[gcode::kY]);
-    if (n <= after) allowed.insert(key(s));
-  }
-  REQUIRE(x1 > x0);
-  gcode::MachineState p;
+  const ObjectPlace place = place_of(gctest::read_file(pegs()), id, after);
   std::size_t on_place = 0;
-  for (const gctest::Executed& e : r.log) {
-    const gcode::MachineState before = p;
-    const gcode::Line l = gcode::Line::parse(e.command);
-    p.apply(l);
-    if (!(l.is_g(1) || l.is_g(0)) || p.position[gcode::kE] <= before.position[gcode::kE]) continue;
-    const double x = p.position[gcode::kX], y = p.position[gcode::kY];
-    if (x < x0 - 0.01 || x > x1 + 0.01 || y < y0 - 0.01 || y > y1 + 0.01) continue;
-    if (x == before.position[gcode::kX] && y == before.position[gcode::kY]) continue;
+  for (const gcode::MachineState& at : extrusions_on(r.log, place)) {
     ++on_place;
-    INFO(e.command << " at " << key(p));
-    REQUIRE(allowed.count(key(p)) == 1);
+    INFO("an extrusion to " << end_key(at));
+    REQUIRE(place.before.count(end_key(at)) == 1);
   }
   CHECK(on_place > 0);
+}
+
+TEST_CASE("gc-send cancel object and --exclude in a swapped-in file: its objects of those ids are left out too",
+          "[gc-send][objects]") {
+  // The pegs' first 14 layers swapped at layer 4 for the whole plate (the
+  // same objects, labelled alike); object 2 excluded from the start, object
+  // 9 cancelled once the swap is asked for.
+  const std::string whole = gctest::fixture_path("prusa_pegs_0.2_klipper_zhop_labels.gcode");
+  gctest::PauseRun r = gctest::send_with_control(
+      pegs(), kPegsPrinter, "--no-pace --exclude 2",
+      "at_layer 4; echo \"swap " + whole + "\" > \"$F\"; sleep 0.05; echo 'cancel object 9' > \"$F\"");
+  INFO(r.result.err);
+  REQUIRE(r.result.status == 0);
+  const double joined_layer = gctest::number_after(r.result.err, ": joined onto layer ");
+  REQUIRE(joined_layer >= 4);
+  const double z = gctest::number_after(r.result.err.substr(r.result.err.find(": joined onto layer ")), "(Z ");
+  REQUIRE(z > 0.5);
+  const std::string input = gctest::read_file(whole);
+  CHECK(extrusions_on(r.log, place_of(input, "2", 0)).empty());
+  std::size_t above = 0;
+  for (const gcode::MachineState& at : extrusions_on(r.log, place_of(input, "9", 0))) {
+    INFO("an extrusion of object 9 at " << end_key(at));
+    CHECK(at.position[gcode::kZ] <= z + 1e-6);
+  }
+  for (const gcode::MachineState& at : extrusions_on(r.log, place_of(input, "7", 0)))
+    if (at.position[gcode::kZ] > z + 1e-6) ++above;
+  CHECK(above > 100);
+  CHECK(r.result.err.find("objects left out: 2 (pegs.stl_3), 9 (pegs.stl_10)") != std::string::npos);
 }
