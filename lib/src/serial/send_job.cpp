@@ -153,6 +153,7 @@ struct PortSetup {
       if (vlog == nullptr) throw std::runtime_error(fmt::format("cannot write {}", job.vconfig.log_path));
     }
     printer = std::make_unique<VirtualPrinter>(job.vconfig, vlog);
+    if (job.vconfig.simulated_clock >= 0) EventLoop::use_simulated_clock(job.vconfig.simulated_clock);
     link = std::make_unique<VirtualLink>(loop, *printer, model_fd);
     baud = job.vconfig.baud;
     scale = job.vconfig.time_scale;
