@@ -32,7 +32,7 @@ void StreamCatchUp::before(const TrackedLine& t, double in_retracted, std::vecto
                 {.z_feed = moves_.z_feed, .xy_feed = moves_.xy_feed, .e_feed = moves_.e_feed, .g0 = true});
   if (tr.printer().firmware_retracted != in.firmware_retracted) tr.firmware_retraction(in.firmware_retracted);
   // Retraction: deeper at once (the input travels retracted here); primed
-  // only before an extrusion (no ooze over what was left out).
+  // only at the start of an extrusion (no ooze over what was left out).
   const Fixed in_depth = Fixed::from_double(in_retracted).rounded(ed);
   auto depth_to_input = [&](bool prime) {
     const Fixed now = Fixed::from_double(retracted_).rounded(ed);
@@ -40,7 +40,7 @@ void StreamCatchUp::before(const TrackedLine& t, double in_retracted, std::vecto
     tr.extrude(now - in_depth, moves_.e_feed);
     retracted_ = in_retracted;
   };
-  depth_to_input(t.move.extruding);
+  depth_to_input(false);
   // What the line's own words leave to the position it starts from.
   const bool fw_move = t.move.kind == MoveKind::FirmwareRetract || t.move.kind == MoveKind::FirmwareUnretract;
   const bool x = line_sets(line, 'X') && !fw_move, y = line_sets(line, 'Y') && !fw_move, z_word = line_sets(line, 'Z') && !fw_move;
@@ -60,6 +60,7 @@ void StreamCatchUp::before(const TrackedLine& t, double in_retracted, std::vecto
   if (move_xy) tr.move_xy(in.at(kX), in.at(kY));
   if (move_z && tr.printer().at(kZ) != z) tr.move_z(z);
   if (relative) tr.positioning(true);
+  if (t.move.extruding) depth_to_input(true);
   // The E coordinate where the line's E is absolute.
   if (!in.relative_e && (line_sets(line, 'E') || t.move.extruding)) tr.e_coordinate(in.at(kE));
   if (!line_sets(line, 'F')) tr.feed_rate(in.feedrate);

@@ -105,7 +105,11 @@ std::string object_table_svg(const ObjectTable& table, const Polygon& bed, int s
   };
   if (bed.size() >= 3)
     fmt::format_to(to, "<polygon points=\"{}\" fill=\"#f6f6f2\" stroke=\"#9a9a9a\" stroke-width=\"{:.2f}\"/>\n", points(bed), 1 / scale);
-  const double font = std::max(3.0, std::min(w, h) / 40);
+  // Numbers that fit the smallest object, and are readable on the whole bed.
+  double font = std::min(w, h) / 40;
+  for (const PlateObject& o : table.objects)
+    if (!o.box.empty()) font = std::min(font, 0.6 * std::min(o.box.width(), o.box.depth()));
+  font = std::max(font, std::min(w, h) / 120);
   for (std::size_t i = 0; i < table.objects.size(); ++i) {
     const PlateObject& o = table.objects[i];
     if (o.outline.size() < 3) continue;

@@ -78,7 +78,7 @@ TEST_CASE("gc-objects --exclude --from-layer: a part that came loose is left out
   CHECK(c.left_out > 0);
 }
 
-TEST_CASE("gc-objects: an unknown object is a usage error listing the objects; all of them is refused", "[gc-objects]") {
+TEST_CASE("gc-objects: an unknown object is a usage error listing the objects, leaving all out is refused", "[gc-objects]") {
   const std::string path = fixture_path("prusa_pegs_0.2_klipper_zhop_labels.gcode");
   auto r = run(gctest::tool_command("gc-objects", "--exclude 99 " + gctest::quote(path)));
   CHECK(r.status == 2);

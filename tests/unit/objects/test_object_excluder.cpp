@@ -48,6 +48,16 @@ const char* const kExcludePlate =
     "; stop printing object A id:0 copy 0\n"
     "M104 S0\n";
 
+// `plate` through an excluder that leaves object `object` out from the start.
+std::string without(const char* plate, int object) {
+  gcode::LayerMarkers markers;
+  gcode::Pipeline p(markers);
+  gcode::ObjectExcluder excluder(p.precision());
+  excluder.exclude(object);
+  p.add(excluder);
+  return gctest::run_stages(p, plate);
+}
+
 }  // namespace test_object_excluder
 
 using namespace test_object_excluder;
@@ -93,4 +103,16 @@ TEST_CASE("object excluder: switched off in the middle of its block, the object 
         "; stop printing object A id:0 copy 0\nM104 S0\n");
   CHECK(excluder.excluded(1));
   CHECK_FALSE(excluder.excluded(0));
+}
+
+TEST_CASE("object excluder: the nozzle a left-out block left retracted is primed at the next extrusion, not before the travel",
+          "[object_excluder]") {
+  const char* const plate =
+      "G90\nM83\n;LAYER_CHANGE\n;Z:0.2\nG1 Z0.2 F600\n"
+      "; printing object A id:0 copy 0\nG1 X0 Y0 F6000\nG1 X10 Y0 E1 F1200\nG1 E-1 F2400\n; stop printing object A id:0 copy 0\n"
+      "; printing object B id:1 copy 0\nG1 X50 Y50 F6000\nG1 E1 F2400\nG1 X60 Y50 E1 F1200\n; stop printing object B id:1 copy 0\n"
+      "; printing object A id:0 copy 0\nG1 X10 Y10 F6000\nG1 X0 Y10 E1 F1200\n; stop printing object A id:0 copy 0\n";
+  const std::string out = without(plate, 1);
+  CHECK_THAT(out, Catch::EndsWith("; printing object A id:0 copy 0\nG1 X10 Y10 F6000\nG1 E1 F2100\nG1 X0 Y10 E1 F1200\n"
+                                  "; stop printing object A id:0 copy 0\n"));
 }

@@ -46,7 +46,7 @@ TEST_CASE("object labels: PrusaSlicer's comments give the name, the id and the c
   CHECK(read(r, "G1 X1 Y2 E3").kind == LabelKind::None);
 }
 
-TEST_CASE("object labels: Cura's meshes end at the next mesh or layer; NONMESH is no object", "[object_label]") {
+TEST_CASE("object labels: Cura's meshes end at the next mesh or layer, NONMESH is no object", "[object_label]") {
   gcode::ObjectTracker t;
   const std::vector<int> got = objects_of(
       {";MESH:left.stl", "G1 X1 Y1 E1", ";MESH:NONMESH", "G0 X5 Y5", ";MESH:right.stl", "G1 X2 Y2 E2", ";LAYER:1", "G0 Z0.4",
@@ -59,7 +59,7 @@ TEST_CASE("object labels: Cura's meshes end at the next mesh or layer; NONMESH i
   CHECK(t.dialect() == LabelDialect::Cura);
 }
 
-TEST_CASE("object labels: ideaMaker names with ;PRINTING: and numbers with ;PRINTING_ID:, -1 is no object", "[object_label]") {
+TEST_CASE("object labels: ideaMaker names with PRINTING and numbers with PRINTING_ID, -1 is no object", "[object_label]") {
   gcode::ObjectTracker t;
   const std::vector<int> got = objects_of(
       {";PRINTING: test_bed_part0.3mf", ";PRINTING_ID: 0", "G1 X1 Y1 E1", ";PRINTING: NON-OBJECT", ";PRINTING_ID: -1",
@@ -82,7 +82,7 @@ TEST_CASE("object labels: Bambu Studio and OrcaSlicer's unique label ids", "[obj
   CHECK(t.names()[1].name == "object 121");
 }
 
-TEST_CASE("object labels: Marlin's M486 with names; S-1 is no object", "[object_label]") {
+TEST_CASE("object labels: Marlin's M486 with names, S-1 is no object", "[object_label]") {
   gcode::ObjectTracker t;
   const std::vector<int> got =
       objects_of({"M486 T2", "M486 S0 A\"cube id:0 copy 0\"", "G1 X1 Y1 E1", "M486 S-1", "M486 S1", "G1 X2 Y2 E2", "M486 S0", "G1 E3"}, t);
@@ -92,7 +92,7 @@ TEST_CASE("object labels: Marlin's M486 with names; S-1 is no object", "[object_
   CHECK(t.dialect() == LabelDialect::Marlin);
 }
 
-TEST_CASE("object labels: Klipper's EXCLUDE_OBJECT declares outlines; its labels win over the comments", "[object_label]") {
+TEST_CASE("object labels: Klipper's EXCLUDE_OBJECT declares outlines and its labels win over the comments", "[object_label]") {
   gcode::ObjectTracker t;
   const std::vector<int> got = objects_of(
       {"EXCLUDE_OBJECT_DEFINE NAME=cube_id_0_copy_0 CENTER=110,110 POLYGON=[[105,105],[115,105],[115,115],[105,115]]",
