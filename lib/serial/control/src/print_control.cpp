@@ -12,7 +12,6 @@
 #include "gcode/core/text.hpp"
 #include "gcode/transform/custom_gcode.hpp"
 #include "gcode/transform/transition.hpp"
-#include "gcode/serial/link/event_loop.hpp"
 #include "gcode/serial/protocol/protocol.hpp"
 
 namespace gcode::serial {
@@ -74,7 +73,8 @@ std::string_view PrintControl::state_label() const {
   return print_state_name(state_);
 }
 
-void PrintControl::line(const TrackedLine& t) {
+void PrintControl::line(const TrackedLine& t, double now) {
+  now_ = now;
   const Line& line = t.line;
   region_ = t.region;
   if (t.layer > 0) layer_ = t.layer;
@@ -129,7 +129,8 @@ void PrintControl::process(std::string_view command, std::uint64_t source, int l
   if (extruding) sent_extrusion_ = true;
 }
 
-void PrintControl::layer(const LayerInfo& info, const MachineState& before) {
+void PrintControl::layer(const LayerInfo& info, const MachineState& before, double now) {
+  now_ = now;
   // A swap asked for goes first, unless a pause does (the swap then comes
   // at its resume).
   if (swap_ && state_ == PrintState::Printing && !holding_ && swap_here(before, printed_, info.index - 1)) return;
@@ -141,14 +142,16 @@ void PrintControl::layer(const LayerInfo& info, const MachineState& before) {
   finish_pausing(before);
 }
 
-void PrintControl::end_code(const MachineState& before) {
+void PrintControl::end_code(const MachineState& before, double now) {
+  now_ = now;
   // The file is done but for its end code: the other file goes on on top.
   if (swap_ && state_ == PrintState::Printing && !holding_ && swap_here(before, printed_, layer_)) return;
   region_ = Region::EndCode;
   if (state_ == PrintState::Pausing) finish_pausing(before);
 }
 
-void PrintControl::end_of_input() {
+void PrintControl::end_of_input(double now) {
+  now_ = now;
   input_ended_ = true;
   // A file cut short (no next layer, no end code): the pause goes at its end.
   if (state_ == PrintState::Pausing) finish_pausing(handed_);
@@ -161,7 +164,7 @@ void PrintControl::finish_pausing(const MachineState& at) {
 }
 
 PauseRecord& PrintControl::start_record(std::string request) {
-  PauseRecord& r = pauses_.start(std::move(request), layer_, EventLoop::now(), probe_.now ? probe_.now() : -1);
+  PauseRecord& r = pauses_.start(std::move(request), layer_, now_, probe_.now ? probe_.now() : -1);
   if (probe_.now) diag_.info(fmt::format("{}: asked at printer time {:.6f} s", r.request, r.printer_request));
   return r;
 }
@@ -377,7 +380,7 @@ void PrintControl::resume() {
   if (stop_.own_block) lines.insert(lines.end(), stop_.resume_lines.begin(), stop_.resume_lines.end());
   submit_lines(lines, layer_);
   stop_.resume_lines.clear();
-  pauses_.resumed(EventLoop::now());
+  pauses_.resumed(now_);
   state_ = PrintState::Printing;
   holding_ = false;
   if (swap_ && at_layer_start()) {
@@ -574,7 +577,8 @@ bool PrintControl::swap_here(const MachineState& at, const PauseContext& context
   return true;
 }
 
-void PrintControl::command(const ControlCommand& c) {
+void PrintControl::command(const ControlCommand& c, double now) {
+  now_ = now;
   switch (c.verb) {
     case ControlVerb::Pause: request_pause("pause", false); break;
     case ControlVerb::PauseNow: request_pause("pause now", true); break;
@@ -591,7 +595,8 @@ void PrintControl::command(const ControlCommand& c) {
   }
 }
 
-void PrintControl::action(std::string_view text) {
+void PrintControl::action(std::string_view text, double now) {
+  now_ = now;
   auto starts = [&](std::string_view word) { return text.rfind(word, 0) == 0; };
   if (starts("pause") && !starts("paused")) {
     request_pause("//action:pause", false);

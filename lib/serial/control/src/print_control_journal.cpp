@@ -30,7 +30,8 @@ bool ran_first(const std::vector<std::string>& block, std::size_t taken, const M
 }  // namespace
 
 std::size_t PrintControl::resume_into_pause(const MachineState& at, const MachineState& parked, double retracted,
-                                            double top_z, std::size_t taken) {
+                                            double top_z, std::size_t taken, double now) {
+  now_ = now;
   PauseRecord& r = start_record("the journal's pause");
   const PausePoint point{at, retracted, top_z, &precision_};
   r.input_line = last_source_;

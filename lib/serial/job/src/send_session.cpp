@@ -49,10 +49,10 @@ struct SendSession::Segment : Stage {
     LayerInfo i = info;
     i.index += layer_offset;
     i.first_line += line_offset;
-    session.control_->layer(i, before);
+    session.control_->layer(i, before, EventLoop::now());
   }
   void end_code(const EndCodeInfo&, const MachineState& before, Emitter&) override {
-    if (session.current_ == this) session.control_->end_code(before);
+    if (session.current_ == this) session.control_->end_code(before, EventLoop::now());
   }
   bool reads_state() const override { return true; }
 
@@ -124,7 +124,7 @@ int SendSession::read_e_mode(EModeChoice choice, std::string_view name) {
 void SendSession::set_control(const PrintControlConfig& config, const std::string& control_path) {
   control_ = std::make_unique<PrintControl>(config, sender_, diag_, pipeline_.precision());
   if (resumed_layer_ > 0) control_->continue_in_layer(resumed_layer_);
-  sender_.set_action_handler([this](std::string_view action) { control_->action(action); });
+  sender_.set_action_handler([this](std::string_view action) { control_->action(action, EventLoop::now()); });
   control_->on_status = [this] {
     if (progress_) progress_->print_line(snapshot());
   };
@@ -133,7 +133,7 @@ void SendSession::set_control(const PrintControlConfig& config, const std::strin
   };
   if (control_path.empty()) return;
   fifo_ = std::make_unique<ControlFifo>(control_path);
-  parser_ = std::make_unique<ControlParser>([this](const ControlCommand& c) { control_->command(c); },
+  parser_ = std::make_unique<ControlParser>([this](const ControlCommand& c) { control_->command(c, EventLoop::now()); },
                                             [this](std::string_view why) { diag_.warn(0, why); });
   loop_.add_fd(fifo_->fd(), POLLIN, [this](short) {
     fifo_->read_into(*parser_);
@@ -282,11 +282,11 @@ void SendSession::layer(const LayerInfo& info, const MachineState& before, Emitt
   LayerInfo shifted = info;
   shifted.index += layer_base_;
   shifted.first_line += line_base_;
-  control_->layer(shifted, before);
+  control_->layer(shifted, before, EventLoop::now());
 }
 
 void SendSession::end_code(const EndCodeInfo&, const MachineState& before, Emitter&) {
-  if (current_ == nullptr) control_->end_code(before);
+  if (current_ == nullptr) control_->end_code(before, EventLoop::now());
 }
 
 // A swapped-in file's lines count on from what was printed before it.
@@ -297,7 +297,7 @@ void SendSession::end_code(const EndCodeInfo&, const MachineState& before, Emitt
 void SendSession::deliver(const TrackedLine& t, int layer_offset, std::uint64_t line_offset, int resumed_layer) {
   ++input_lines_;
   if (layer_offset == 0 && line_offset == 0) {
-    control_->line(t);
+    control_->line(t, EventLoop::now());
     return;
   }
   RawLine raw = t.raw;
@@ -312,7 +312,7 @@ void SendSession::deliver(const TrackedLine& t, int layer_offset, std::uint64_t 
                       t.layer > 0 ? t.layer + layer_offset : resumed_layer,
                       t.feature,
                       t.origin};
-  control_->line(shifted);
+  control_->line(shifted, EventLoop::now());
 }
 
 int SendSession::layers() const {
@@ -343,7 +343,7 @@ bool SendSession::feed_segment() {
     if (s.text.empty()) {
       s.pipeline.finish();
       input_done_ = true;
-      control_->end_of_input();
+      control_->end_of_input(EventLoop::now());
       return false;
     }
   }
@@ -402,7 +402,7 @@ void SendSession::feed_input() {
       }
       pipeline_.finish();
       input_done_ = true;
-      control_->end_of_input();
+      control_->end_of_input(EventLoop::now());
       break;
     }
     std::string_view fed = std::string_view(in_buf_).substr(in_pos_, nl + 1 - in_pos_);
