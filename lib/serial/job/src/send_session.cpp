@@ -327,7 +327,7 @@ void SendSession::start_swap(std::unique_ptr<JoinStream> next, int layers_done) 
   current_->pipeline.add(*current_);
   // The layers and time to come are the other file's: as far as known.
   total_layers_ = 0;
-  estimated_total_ = 0;
+  eta_.set_estimate(0);
   // The input is read no further.
   if (input_watch_ >= 0) loop_.set_events(input_watch_, 0);
 }
@@ -496,15 +496,10 @@ ProgressSnapshot SendSession::snapshot() const {
     s.percent = 100.0 * static_cast<double>(input_bytes_) / static_cast<double>(input_size_);
   }
   s.lines = st.lines;
-  s.elapsed = st.print_start >= 0 ? EventLoop::now() - st.print_start : 0;
+  const double now = EventLoop::now();
+  s.elapsed = st.print_start >= 0 ? now - st.print_start : 0;
   s.lines_per_second = s.elapsed > 0 ? static_cast<double>(st.lines) / s.elapsed : 0;
-  if (current_ == nullptr && eta_origin_wall_ >= 0) {
-    // Paced from the first layer on: the start code's heating is not in the estimate.
-    const double now = EventLoop::now();
-    s.eta = estimated_remaining(estimated_total_ - eta_origin_estimate_, sender_.estimated_time() - eta_origin_estimate_,
-                                now - eta_origin_wall_ - (control_->paused_seconds(now) - eta_origin_paused_));
-  }
-  if (s.eta < 0 && s.percent > 1 && s.elapsed > 0) s.eta = s.elapsed * (100 - s.percent) / s.percent;
+  s.eta = eta_.remaining(now, sender_.estimated_time(), control_->paused_seconds(now), s.percent, s.elapsed);
   s.speed = control_->speed();
   s.temperatures = sender_.temperatures();
   s.resets = static_cast<int>(st.resets);
@@ -540,10 +535,9 @@ void SendSession::update() {
   sender_.pump(EventLoop::now());
   flush_port();
   control_->update(EventLoop::now());
-  if (eta_origin_wall_ < 0 && control_->layer() >= 1) {
-    eta_origin_wall_ = EventLoop::now();
-    eta_origin_estimate_ = sender_.estimated_time();
-    eta_origin_paused_ = control_->paused_seconds(eta_origin_wall_);
+  if (!eta_.pacing() && control_->layer() >= 1) {
+    const double now = EventLoop::now();
+    eta_.layer_one(now, sender_.estimated_time(), control_->paused_seconds(now));
   }
   if (reconnecting_ && control_->cancelled()) {
     // Nobody to send the safe end to: the print stops where the printer is.

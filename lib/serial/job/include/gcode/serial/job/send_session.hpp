@@ -65,7 +65,7 @@ class SendSession : private Stage {
   void set_total_layers(int layers) { total_layers_ = layers; }
   // The estimator's printer seconds for the whole input (sender_estimator_options),
   // when known beforehand: the ETA goes by it.
-  void set_estimated_time(double seconds) { estimated_total_ = seconds; }
+  void set_estimated_time(double seconds) { eta_.set_estimate(seconds); }
   // Keeps the journal (not owned) while printing: before run().
   void set_journal(SendJournal* journal);
   // A resume: the input's first `bytes` were printed before (they are read
@@ -159,10 +159,7 @@ class SendSession : private Stage {
   std::string_view shown_state_;   // what the progress last showed
   int shown_layer_ = -1;
   int total_layers_ = 0;
-  double estimated_total_ = 0;
-  double eta_origin_wall_ = -1;     // when layer 1 began (the ETA's pace counts from there)
-  double eta_origin_estimate_ = 0;  // the estimate handed over by then
-  double eta_origin_paused_ = 0;
+  PrintEta eta_;
   // Swapped-in files, all kept: a swap starts inside a pipeline's call.
   std::vector<std::unique_ptr<Segment>> segments_;
   Segment* current_ = nullptr;  // what is fed now (null: the input)
