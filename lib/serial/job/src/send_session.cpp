@@ -24,9 +24,6 @@ namespace {
 
 constexpr std::size_t kReadSize = 65536;   // bytes read from the input at once
 constexpr std::size_t kLowWater = 16384;   // read more when less is buffered
-// A checkpoint of the input's hash in the journal at least this often: a
-// resume of a re-run pipeline checks the bytes up to one before its line.
-constexpr std::uint64_t kCheckpointBytes = 64 * 1024;
 
 }  // namespace
 
@@ -162,16 +159,11 @@ void SendSession::set_journal(SendJournal* journal) {
 }
 
 void SendSession::hash_fed(std::string_view bytes) {
-  input_hash_.update(bytes);
-  if (input_hash_.bytes() - checkpointed_ >= kCheckpointBytes) {
-    checkpointed_ = input_hash_.bytes();
-    journal_->checkpoint(checkpointed_, input_hash_.digest());
-  }
+  if (input_hash_.fed(bytes)) journal_->checkpoint(input_hash_.bytes(), input_hash_.digest());
 }
 
 void SendSession::skip_printed(std::uint64_t bytes, std::uint64_t hash_bytes, std::uint64_t lines, int layer,
                                const MachineState& state) {
-  skipped_hash_ = 0;
   LayerMarkerSearch markers(markers_);
   std::string block(kReadSize, '\0');
   const std::uint64_t need = std::max(bytes, hash_bytes);
@@ -188,30 +180,14 @@ void SendSession::skip_printed(std::uint64_t bytes, std::uint64_t hash_bytes, st
       auto printed = static_cast<std::size_t>(std::min<std::uint64_t>(bytes - done, got.size()));
       std::string_view part = got.substr(0, printed);
       markers.feed(part);
-      std::uint64_t at = input_hash_.bytes();
-      if (hash_bytes > at && hash_bytes <= at + part.size()) {
-        auto head = static_cast<std::size_t>(hash_bytes - at);
-        input_hash_.update(part.substr(0, head));
-        skipped_hash_ = input_hash_.digest();
-        part.remove_prefix(head);
-      }
-      input_hash_.update(part);
+      input_hash_.printed(part, hash_bytes);
       got.remove_prefix(printed);
     }
     in_buf_.append(got);
     done += static_cast<std::uint64_t>(n);
   }
-  if (hash_bytes == 0) skipped_hash_ = PrefixHash().digest();
-  if (hash_bytes > input_hash_.bytes() && done >= hash_bytes) {
-    // The checkpoint lies a little past the printed part: the check hashes
-    // on into what is to be fed, on a copy.
-    PrefixHash check;
-    check.copy_from(input_hash_);
-    check.update(std::string_view(in_buf_).substr(0, static_cast<std::size_t>(hash_bytes - input_hash_.bytes())));
-    skipped_hash_ = check.digest();
-  }
+  input_hash_.printed_end(in_buf_, hash_bytes, done >= hash_bytes);
   skipped_bytes_ = input_hash_.bytes();
-  checkpointed_ = skipped_bytes_;
   input_bytes_ = skipped_bytes_;
   line_base_ = lines;
   layer_base_ = layer;

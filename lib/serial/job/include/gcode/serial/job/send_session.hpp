@@ -31,6 +31,7 @@
 #include "gcode/serial/control/control_fifo.hpp"
 #include "gcode/serial/control/print_control.hpp"
 #include "gcode/serial/job/progress.hpp"
+#include "gcode/serial/journal/input_hash.hpp"
 #include "gcode/serial/journal/send_journal.hpp"
 #include "gcode/serial/link/event_loop.hpp"
 #include "gcode/serial/link/port.hpp"
@@ -76,7 +77,7 @@ class SendSession : private Stage {
   void skip_printed(std::uint64_t bytes, std::uint64_t hash_bytes, std::uint64_t lines, int layer,
                     const MachineState& state);
   // The hash of the input's first `hash_bytes` (0 when the input ended before).
-  std::uint64_t skipped_hash() const { return skipped_hash_; }
+  std::uint64_t skipped_hash() const { return input_hash_.check_digest(); }
   std::uint64_t skipped_bytes() const { return skipped_bytes_; }
   // A port that fails (EIO, ENODEV, a hang-up) is waited for up to
   // `seconds` at `path` and opened again with `options` (no DTR reset):
@@ -169,10 +170,8 @@ class SendSession : private Stage {
   int layer_base_ = 0;             // ... and layers printed before it
   int resumed_layer_ = 0;          // ... the layer it stopped in (the journal's; 0: the start code)
   double resumed_z_ = 0;           // ... and the nozzle's height there
-  std::uint64_t skipped_hash_ = 0;
   std::uint64_t skipped_bytes_ = 0;
-  PrefixHash input_hash_;            // the input's bytes fed (or printed before a resume)
-  std::uint64_t checkpointed_ = 0;  // bytes of the journal's newest checkpoint
+  InputHash input_hash_;            // the input's bytes fed (or printed before a resume)
   std::uint64_t fed_lines_ = 0;     // input lines fed to the pipeline (a resume's not counted)
 };
 
