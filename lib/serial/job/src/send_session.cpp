@@ -441,13 +441,51 @@ void SendSession::flush_port() {
   }
 }
 
+void SendSession::set_reconnect(const std::string& path, const PortOptions& options, double seconds) {
+  reconnect_.emplace(sender_, diag_, path, options, seconds);
+  loop_.add_timer([this] { return reconnect_->next_try(); },
+                  [this](double now) {
+                    try_reconnect(now);
+                    update();
+                  });
+}
+
+std::string_view SendSession::state_label() const {
+  if (sender_.finished()) return "done";
+  if (reconnecting()) return "reconnecting";
+  return control_->state_label();
+}
+
+void SendSession::port_lost(std::string_view why) {
+  if (port_watch_ >= 0) {
+    loop_.set_events(port_watch_, 0);
+    loop_.remove_fd(port_watch_);
+    port_watch_ = -1;
+  }
+  if (!reconnect_) {
+    sender_.disconnected(why);
+    return;
+  }
+  if (!reconnect_->lost(why, EventLoop::now())) return;
+  ::close(port_fd_);
+  port_fd_ = -1;
+  port_replaced_ = true;
+  port_in_.clear();
+}
+
+void SendSession::try_reconnect(double now) {
+  const int fd = reconnect_->attempt(now);
+  if (fd < 0) return;
+  port_fd_ = fd;
+  watch_port();
+}
+
 void SendSession::on_signal() {
   signalfd_siginfo info{};
   while (::read(signal_fd_, &info, sizeof info) == static_cast<ssize_t>(sizeof info)) {
     ++interrupts_;
-    if (reconnecting_) {
-      reconnecting_ = false;
-      sender_.disconnected("interrupted while waiting for the port to come back: nothing more was sent");
+    if (reconnecting()) {
+      reconnect_->give_up("interrupted while waiting for the port to come back: nothing more was sent");
       continue;
     }
     if (interrupts_ == 1 && control_->interrupt()) continue;
@@ -515,10 +553,9 @@ void SendSession::update() {
     const double now = EventLoop::now();
     eta_.layer_one(now, sender_.estimated_time(), control_->paused_seconds(now));
   }
-  if (reconnecting_ && control_->cancelled()) {
+  if (reconnecting() && control_->cancelled()) {
     // Nobody to send the safe end to: the print stops where the printer is.
-    reconnecting_ = false;
-    sender_.disconnected("cancelled while waiting for the port to come back: nothing more was sent");
+    reconnect_->give_up("cancelled while waiting for the port to come back: nothing more was sent");
   }
   if (progress_ && (state_label() != shown_state_ || control_->layer() != shown_layer_)) {
     shown_state_ = state_label();

@@ -30,6 +30,7 @@
 #include "gcode/pipeline/pipeline.hpp"
 #include "gcode/serial/control/control_fifo.hpp"
 #include "gcode/serial/control/print_control.hpp"
+#include "gcode/serial/job/port_reconnect.hpp"
 #include "gcode/serial/job/progress.hpp"
 #include "gcode/serial/journal/input_hash.hpp"
 #include "gcode/serial/journal/send_journal.hpp"
@@ -81,13 +82,13 @@ class SendSession : private Stage {
   std::uint64_t skipped_bytes() const { return skipped_bytes_; }
   // A port that fails (EIO, ENODEV, a hang-up) is waited for up to
   // `seconds` at `path` and opened again with `options` (no DTR reset):
-  // send_session_reconnect.cpp. Without it (or with 0 s) a lost port ends
-  // the print at once.
+  // port_reconnect.hpp. Without it (or with 0 s) a lost port ends the
+  // print at once.
   void set_reconnect(const std::string& path, const PortOptions& options, double seconds);
   // Once the port was lost with --reconnect the session closed the
   // descriptor it was given, and closes those it opens itself.
   bool port_replaced() const { return port_replaced_; }
-  bool reconnecting() const { return reconnecting_; }
+  bool reconnecting() const { return reconnect_ && reconnect_->waiting(); }
   PrintControl* control() { return control_.get(); }
   const ControlFifo* fifo() const { return fifo_.get(); }
 
@@ -147,13 +148,8 @@ class SendSession : private Stage {
   std::string port_in_;       // a partial line from the printer
   int input_watch_ = -1;
   int port_watch_ = -1;
-  std::string reconnect_path_;   // "" : a lost port ends the print
-  PortOptions reconnect_options_;
-  double reconnect_seconds_ = 0;
-  bool reconnecting_ = false;
+  std::optional<PortReconnect> reconnect_;  // none: a lost port ends the print
   bool port_replaced_ = false;   // the caller's descriptor is closed; port_fd_ (if >= 0) is ours
-  double lost_at_ = 0;
-  double next_try_ = 0;
   int interrupts_ = 0;
   double started_ = 0;
   double next_report_ = 0;
