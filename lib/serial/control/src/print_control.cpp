@@ -451,6 +451,38 @@ std::vector<std::string> PrintControl::safe_end(const MachineState& at, bool par
   return lines;
 }
 
+std::size_t PrintControl::resume_into_pause(const MachineState& at, const MachineState& parked, double retracted,
+                                            double top_z, std::size_t taken, double now) {
+  now_ = now;
+  PauseRecord& r = start_record("the journal's pause");
+  r.input_line = last_source_;
+  r.block_number = sender_.last_submitted() + 1;
+  r.block = true;
+  handed_ = at;
+  PauseReentry reentry(at, retracted, top_z, &precision_, parked, taken);
+  bool rest = false;
+  try {
+    PauseConfig c = pause_config(at);
+    config_.park.place_or_lift(printed_, precision_, c);
+    rest = reentry.finish_block(c);
+  } catch (const std::exception& e) {
+    reentry.cannot_make(e.what());
+  }
+  if (!reentry.warning().empty()) diag_.warn(0, "the journal's pause: " + reentry.warning());
+  if (!rest) reentry.park_here(pause_config(at));
+  stop_at(at, reentry.resume_from(), true);
+  stop_.resume_lines = std::move(reentry.resume_lines());
+  if (!rest) {
+    stop_.printer = parked;
+    diag_.info("the print was paused: waiting for resume");
+    return 0;
+  }
+  submit_lines(reentry.rest(), layer_);
+  diag_.info(fmt::format("the print was pausing: the rest of the pause block ({} of {} lines) sent; waiting for resume",
+                         reentry.rest().size(), reentry.block_lines()));
+  return reentry.rest().size();
+}
+
 double PrintControl::paused_seconds(double now) const {
   return pauses_.paused_seconds(now, state_ == PrintState::Paused);
 }

@@ -44,6 +44,7 @@
 #include "gcode/pipeline/pipeline.hpp"
 #include "gcode/serial/control/control_fifo.hpp"
 #include "gcode/serial/control/pause_log.hpp"
+#include "gcode/serial/control/pause_reentry.hpp"
 #include "gcode/serial/sender/sender.hpp"
 #include "gcode/serial/control/take_back.hpp"
 #include "gcode/transform/join_stream.hpp"
@@ -128,7 +129,7 @@ class PrintControl {
   std::function<void(std::unique_ptr<JoinStream> next, int layers_done)> on_swap;
   const SeamOptions& seam_options() const { return config_.seam; }
   std::uint64_t swaps() const { return swaps_; }
-  // gc-send --resume of a print that stood paused (print_control_journal.cpp):
+  // gc-send --resume of a print that stood paused (pause_reentry.hpp):
   // the printer stands `parked` (the journal's state after the pause block
   // and anything typed), the print stopped at `at` (with `retracted` mm of
   // its own retraction pending and `top_z` printed). The control waits for
@@ -179,7 +180,6 @@ class PrintControl {
   void request_pause(std::string request, bool now);
   void finish_pausing(const MachineState& at);
   void pause_here(const MachineState& at);
-  std::size_t finish_block(const PausePoint& point, const MachineState& parked, std::size_t taken);
   PauseConfig pause_config(const MachineState& at) const;
   void hold_here(std::string request);
   void stop_at(const MachineState& at, const MachineState& resume_from, bool own_block);
