@@ -2,7 +2,6 @@
 // What the virtual printer (virtual_printer.hpp) is: its buffers, link,
 // planner and faults, as `virtual:key=value,...` names them (gc-send
 // --port virtual:..., gc-virtual-printer).
-#include <array>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -12,14 +11,10 @@
 
 namespace gcode::serial {
 
-// The firmwares the virtual printer plays (find_dialect, virtual_dialect.hpp,
-// has one for each name).
-inline constexpr std::array<std::string_view, 5> kVirtualFirmwares = {"marlin", "klipper", "prusa", "rrf",
-                                                                      "reprapfirmware"};
-
 struct VirtualPrinterConfig {
-  // Whose replies and quirks: marlin, klipper, prusa, rrf (virtual_dialect.hpp).
-  std::string firmware = "marlin";
+  // Whose replies and quirks: a name of core/firmware.hpp's firmwares()
+  // (virtual_dialect.hpp plays each).
+  std::string firmware = "marlin2";
   // How long the user at the printer takes to answer a wait that asks for
   // them (Prusa's M600, its own pause, "M115 U" newer), in simulated seconds.
   double user_seconds = 5;
