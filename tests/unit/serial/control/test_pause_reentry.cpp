@@ -18,7 +18,9 @@ using namespace gcode::serial;
 
 namespace test_pause_reentry {
 
-MachineState stopped_at() { return gctest::replay_state("G28\nM104 S205\nM82\nG1 X10 Y20 Z0.3 F1500\nG1 X20 E5.12345\n"); }
+MachineState stopped_at() {
+  return gctest::replay_state("G28\nM104 S205\nM82\nG1 X10 Y20 Z0.3 F1500\nG1 X20 E5.12345\n");
+}
 
 PauseConfig park_at(double x, double y) {
   PauseConfig c;
