@@ -266,11 +266,11 @@ TEST_CASE("gc-send --resume after kill -9: the objects cancelled and excluded st
   const std::string first = dir + "/first.err";
   const std::string send = quote(tool_path("gc-send")) + " -v --port " + quote(port) + " --journal " + quote(journal);
   const std::string script =
-      quote(tool_path("gc-virtual-printer")) + " -q --time-scale 20 --instant-moves --heat-rate 1000 --link " +
+      quote(tool_path("gc-virtual-printer")) + " -q --time-scale 8 --instant-moves --heat-rate 1000 --link " +
       quote(port) + " --log " + quote(dir + "/executed.log") + " & vp=$!\n" + gctest::wait_for_link(port) + send +
       " --no-pace --exclude 6 --control " + quote(fifo) + " " + quote(pegs()) + " 2> " + quote(first) + " & gs=$!\n" +
       gctest::wait_for_journal_start(journal) + gctest::wait_for_fifo(fifo) + "sleep 0.5; echo 'cancel object 2' > " +
-      quote(fifo) + "; sleep 1; kill -9 $gs; wait $gs 2>/dev/null\n" + send + " --no-control --resume " +
+      quote(fifo) + "; sleep 0.7; kill -9 $gs; wait $gs 2>/dev/null\n" + send + " --no-control --resume " +
       quote(journal) + " " + quote(pegs()) + "; s=$?; kill $vp; wait $vp; exit $s";
   auto r = gctest::run(script);
   const std::string first_err = gctest::read_file(first);

@@ -58,12 +58,20 @@ void PrintedObjects::read_line(std::string_view text) {
   tracker_.line(Line::parse(text));
 }
 
-LiveExcluder::LiveExcluder(ObjectCancel& owner, const Precision& precision, std::uint64_t line_offset)
-    : owner_(owner), excluder_(precision), line_offset_(line_offset) {}
+LiveExcluder::LiveExcluder(ObjectCancel& owner, const Precision& precision, std::uint64_t line_offset,
+                           int resumed_layer)
+    : owner_(owner), excluder_(precision), line_offset_(line_offset), resumed_layer_(resumed_layer) {}
 
 void LiveExcluder::line(const TrackedLine& t, Emitter& out) {
   last_line_ = t.raw.number + line_offset_;
-  excluder_.line(t, out);
+  if (resumed_layer_ > 0 && t.layer == 0) {
+    // The rest of the layer a resume stopped in: the excluder leaves out
+    // only lines of layers.
+    const TrackedLine in_layer{t.raw, t.line, t.move, t.before, t.state, Region::Layer, resumed_layer_, t.feature, t.origin};
+    excluder_.line(in_layer, out);
+  } else {
+    excluder_.line(t, out);
+  }
   // An object named by this line is left out from the next one on: the
   // label line itself moves nothing.
   tell_owner();
@@ -80,8 +88,8 @@ void LiveExcluder::layer(const LayerInfo& info, const MachineState& before, Emit
   excluder_.layer(info, before, out);
 }
 
-void ObjectCancel::add_stage(Pipeline& pipeline, std::uint64_t line_offset) {
-  auto stage = std::make_unique<LiveExcluder>(*this, precision_, line_offset);
+void ObjectCancel::add_stage(Pipeline& pipeline, std::uint64_t line_offset, int resumed_layer) {
+  auto stage = std::make_unique<LiveExcluder>(*this, precision_, line_offset, resumed_layer);
   if (stages_.empty() && primed_) stage->excluder().continue_from(printed_);
   pipeline.add(*stage);
   stages_.push_back(std::move(stage));

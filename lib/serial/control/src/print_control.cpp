@@ -65,9 +65,9 @@ PrintControl::PrintControl(const PrintControlConfig& config, Sender& sender, Dia
   rush_.set_enabled(false);
 }
 
-void PrintControl::add_stages(Pipeline& pipeline, std::uint64_t line_offset) {
+void PrintControl::add_stages(Pipeline& pipeline, std::uint64_t line_offset, int resumed_layer) {
   // First: what the excluder writes to catch up is sped up like the rest.
-  objects_.add_stage(pipeline, line_offset);
+  objects_.add_stage(pipeline, line_offset, resumed_layer);
   pipeline.add(user_speed_);
   pipeline.add(rush_);
 }

@@ -219,7 +219,7 @@ void SendSession::count_header() {
 
 void SendSession::run() {
   if (!control_) set_control(PrintControlConfig{}, std::string());
-  control_->add_stages(pipeline_, line_base_);
+  control_->add_stages(pipeline_, line_base_, resumed_layer_);
   pipeline_.add(*this);
   count_header();
   input_watch_ = loop_.add_fd(input_fd_, POLLIN, [this](short) { read_input(); });

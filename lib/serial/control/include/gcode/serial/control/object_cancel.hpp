@@ -60,8 +60,10 @@ class PrintedObjects {
 // One pipeline's excluder, told of each object as its pipeline names it.
 class LiveExcluder final : public Stage {
  public:
-  // `line_offset`: input lines before this pipeline's first (a resume, a swap).
-  LiveExcluder(ObjectCancel& owner, const Precision& precision, std::uint64_t line_offset);
+  // `line_offset`: input lines before this pipeline's first (a resume, a
+  // swap); `resumed_layer`: a resume's pipeline starts inside that layer,
+  // and its lines up to the next layer are of it (not start code).
+  LiveExcluder(ObjectCancel& owner, const Precision& precision, std::uint64_t line_offset, int resumed_layer = 0);
   void line(const TrackedLine& t, Emitter& out) override;
   void layer(const LayerInfo& info, const MachineState& before, Emitter& out) override;
   void finish(Emitter& out) override { excluder_.finish(out); }
@@ -77,6 +79,7 @@ class LiveExcluder final : public Stage {
   ObjectCancel& owner_;
   ObjectExcluder excluder_;
   std::uint64_t line_offset_;
+  int resumed_layer_;
   std::uint64_t last_line_ = 0;
   std::size_t known_ = 0;  // names the owner has been told of
 };
@@ -86,7 +89,7 @@ class ObjectCancel {
   ObjectCancel(Diagnostics& diagnostics, const Precision& precision) : diag_(diagnostics), precision_(precision) {}
 
   // A new excluder, first in `pipeline` (before anything that changes lines).
-  void add_stage(Pipeline& pipeline, std::uint64_t line_offset);
+  void add_stage(Pipeline& pipeline, std::uint64_t line_offset, int resumed_layer = 0);
   // gc-send --resume: the labels of the lines printed before (read before
   // the first excluder exists).
   void continue_from(const ObjectTracker& printed) {

@@ -92,8 +92,9 @@ class PrintControl {
 
   // The object excluder and the speed stages (`speed F`, the rush), to be
   // added to the pipeline before the sending stage, in this order.
-  // `line_offset`: input lines before the pipeline's first (a resume, a swap).
-  void add_stages(Pipeline& pipeline, std::uint64_t line_offset = 0);
+  // `line_offset`: input lines before the pipeline's first (a resume, a swap);
+  // `resumed_layer`: the layer a resume's pipeline starts inside (0: none).
+  void add_stages(Pipeline& pipeline, std::uint64_t line_offset = 0, int resumed_layer = 0);
   void set_probe(MotionProbe probe) { probe_ = std::move(probe); }
 
   // Every call that can start or end a pause is given `now`, the caller's
