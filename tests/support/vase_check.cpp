@@ -129,6 +129,8 @@ VaseCheck check_vase(const std::string& gcode, const TestMesh& mesh, const VaseS
         first_layer.push_back({m.move.start[0], m.move.start[1], m.move.end[0], m.move.end[1]});
       continue;
     }
+    c.z_fall = std::max(c.z_fall, last_z - m.move.end[2]);
+    last_z = std::max(last_z, m.move.end[2]);
     // A travel, a retraction, a move of Z alone. A piece at the very start
     // of the ramp may carry too little filament for E's 5 decimals: E0 where
     // its bead (at most z - base high) needs under 1e-5 mm is not a travel.
@@ -143,8 +145,6 @@ VaseCheck check_vase(const std::string& gcode, const TestMesh& mesh, const VaseS
       turn_filament[static_cast<std::size_t>(turn)] += m.move.filament;
       turn_length[static_cast<std::size_t>(turn)] += m.move.length;
     }
-    c.z_fall = std::max(c.z_fall, last_z - m.move.end[2]);
-    last_z = std::max(last_z, m.move.end[2]);
     c.wall_top = std::max(c.wall_top, m.move.end[2]);
     const int samples = std::max(1, static_cast<int>(std::ceil(m.move.length / 0.2)));
     for (int k = 1; k <= samples; ++k) {

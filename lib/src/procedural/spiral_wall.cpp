@@ -97,7 +97,8 @@ void spiral_wall(MeshSlicer& slicer, const SpiralWallOptions& o, Point2 from, st
       const LoopWalk walk(outline.line);
       const double s0 = walk.nearest(from), len = walk.length();
       walk.walk(s0 + len * j / pieces, s0 + len * (j + 1) / pieces, [&](double s, const Point2& p) {
-        const double z = z0 + (s - s0) / len * o.pitch;
+        // One expression for every Z, so that a turn's end and the next one's start are the same number.
+        const double z = o.base + (k + (s - s0) / len) * o.pitch;
         const PathPoint point{p.x, p.y, z, std::min(z - o.base, o.pitch)};
         // Two points closer than X and Y are written would make a move of Z alone: the later one stands for both.
         if (!layer.points.empty() && std::hypot(p.x - layer.points.back().x, p.y - layer.points.back().y) < kMinStep)

@@ -85,8 +85,12 @@ Mesh read_ascii(std::string_view text, std::string_view name, double merge) {
   auto fail = [&](std::string_view what) {
     return MeshError(fmt::format("{}: line {}: {}", name, words.line(), what));
   };
+  auto next = [&] {
+    if (!words.next(w)) throw MeshError(fmt::format("{}: the file ends inside a facet (truncated?)", name));
+  };
   auto expect = [&](std::string_view word) {
-    if (!words.next(w) || w != word) throw fail(fmt::format("expected '{}', not '{}'", word, w));
+    next();
+    if (w != word) throw fail(fmt::format("expected '{}', not '{}'", word, w));
   };
   while (words.next(w)) {
     if (w == "endsolid") break;
@@ -99,7 +103,8 @@ Mesh read_ascii(std::string_view text, std::string_view name, double merge) {
       expect("vertex");
       double xyz[3];
       for (double& d : xyz) {
-        if (!words.next(w) || !parse_number(w, d)) throw fail(fmt::format("expected a number, not '{}'", w));
+        next();
+        if (!parse_number(w, d)) throw fail(fmt::format("expected a number, not '{}'", w));
         if (!std::isfinite(d)) throw fail(fmt::format("'{}' is not a finite number", w));
       }
       v = {xyz[0], xyz[1], xyz[2]};
@@ -112,10 +117,12 @@ Mesh read_ascii(std::string_view text, std::string_view name, double merge) {
   return builder.take();
 }
 
-bool begins_with_solid(std::string_view bytes) {
+// ASCII: begins with "solid" and has no NUL byte near the start (a
+// binary file's triangle count, after its "solid ..." header, has some).
+bool is_ascii(std::string_view bytes) {
   std::size_t i = 0;
   while (i < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[i]))) ++i;
-  return bytes.substr(i, 5) == "solid";
+  return bytes.substr(i, 5) == "solid" && bytes.substr(0, 1024).find('\0') == std::string_view::npos;
 }
 
 }  // namespace
@@ -124,12 +131,12 @@ Mesh read_stl(std::string_view bytes, std::string_view name, double merge_distan
   Mesh mesh;
   if (is_binary(bytes)) {
     mesh = read_binary(bytes, name, merge_distance);
-  } else if (begins_with_solid(bytes)) {
+  } else if (is_ascii(bytes)) {
     mesh = read_ascii(bytes, name, merge_distance);
   } else if (bytes.size() >= kHeader) {
-    throw MeshError(fmt::format("{}: not an STL file: {} bytes, but a binary STL counting {} triangles has {} "
-                                "(truncated?), and it does not begin with 'solid'",
-                                name, bytes.size(), count_of(bytes), kHeader + kFacet * std::uint64_t{count_of(bytes)}));
+    throw MeshError(fmt::format("{}: a binary STL counting {} triangles has {} bytes, this one {} (truncated, or not "
+                                "an STL)",
+                                name, count_of(bytes), kHeader + kFacet * std::uint64_t{count_of(bytes)}, bytes.size()));
   } else {
     throw MeshError(fmt::format("{}: not an STL file ({} bytes)", name, bytes.size()));
   }

@@ -4,7 +4,8 @@
 // Which of the two a file is, is told by its size, not by its first word:
 // a binary file is 84 + 50 n bytes for the n triangles its header counts,
 // and its 80-byte header may well begin with "solid" (many exporters write
-// that). Anything else that begins with "solid" is read as ASCII.
+// that). Anything else that begins with "solid" and holds no NUL byte in
+// its first kilobyte is read as ASCII.
 // The normals are skipped (the corners alone define a triangle; exporters
 // write them flipped or zero). Refused with a MeshError that says where:
 // a binary file whose size does not match its count (truncated, or not an
