@@ -10,6 +10,7 @@
 #include "mesh_maker.hpp"
 #include "test_support.hpp"
 #include "vase_check.hpp"
+#include "vase_judge.hpp"
 
 namespace test_gc_shape_vase {
 
@@ -50,12 +51,8 @@ TEST_CASE("gc-shape vase --mesh: on the surface, one turn a layer, through gc-la
     meshtest::VaseSetup setup;
     setup.bottom_layers = 2;
     const meshtest::VaseCheck c = meshtest::check_vase(out, mesh, setup);
-    CHECK(c.outside == 0);
-    CHECK(c.worst_offset <= 0.03);
-    CHECK(c.z_fall <= 0);
-    CHECK(c.other_moves == 0);
-    CHECK(c.worst_flow <= 0.02);
-    CHECK(c.wall_top == Approx(c.model_top).margin(0.001));
+    meshtest::judge_wall(c);
+    meshtest::judge_bottom(c);
     auto layers = run(tool_command("gc-layers", "--json -"), out);
     REQUIRE(layers.status == 0);
     CHECK(nlohmann::json::parse(layers.out)["summary"]["layers"] == 2 + c.turns);
