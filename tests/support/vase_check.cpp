@@ -155,7 +155,8 @@ VaseCheck check_vase(const std::string& gcode, const TestMesh& mesh, const VaseS
       const std::vector<Seg> section = sections.at(z - pitch / 2);
       ++c.wall_samples;
       if (!inside(x, y, section)) ++c.outside;
-      c.worst_offset = std::max(c.worst_offset, std::fabs(distance(x, y, section) - s.line_width / 2));
+      const double off = std::fabs(distance(x, y, section) - s.line_width / 2);
+      if (off > c.worst_offset) c.worst_offset = off, c.worst_at[0] = x, c.worst_at[1] = y, c.worst_at[2] = z;
     }
   }
   for (int t = 1; t < c.turns; ++t)

@@ -30,6 +30,7 @@ struct VaseCheck {
   std::size_t wall_samples = 0;
   std::size_t outside = 0;         // wall samples outside their section
   double worst_offset = 0;         // mm, largest |distance from the outline - line width / 2|
+  double worst_at[3] = {0, 0, 0};  // where
   double z_fall = 0;               // mm, largest drop of Z along the wall
   std::size_t other_moves = 0;     // travels, retractions, Z-only moves in the wall
   double worst_flow = 0;           // largest |filament per mm / expected - 1| of a turn after the ramp

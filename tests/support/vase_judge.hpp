@@ -10,7 +10,8 @@
 namespace meshtest {
 
 inline void judge_wall(const VaseCheck& c) {
-  INFO("worst offset " << c.worst_offset << ", flow " << c.worst_flow << ", outside " << c.outside << "/"
+  INFO("worst offset " << c.worst_offset << " at " << c.worst_at[0] << "," << c.worst_at[1] << "," << c.worst_at[2]
+                       << ", flow " << c.worst_flow << ", outside " << c.outside << "/"
                        << c.wall_samples);
   CHECK(c.wall_samples > 1000);
   CHECK(c.outside == 0);
