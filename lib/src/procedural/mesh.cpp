@@ -18,27 +18,39 @@ void Mesh::place(double scale, double center_x, double center_y) {
   for (Vec3& v : vertices) v = {v.x + dx, v.y + dy, v.z - b.min[2]};
 }
 
-std::size_t MeshBuilder::CellHash::operator()(const Cell& c) const noexcept {
-  const auto mix = [](std::uint64_t h, std::int64_t v) {
-    return (h ^ static_cast<std::uint64_t>(v)) * 0x9E3779B97F4A7C15ull;
-  };
-  return static_cast<std::size_t>(mix(mix(mix(0, c[0]), c[1]), c[2]) >> 7);
-}
-
-MeshBuilder::MeshBuilder(double merge_distance) : merge_(merge_distance) {}
+MeshBuilder::MeshBuilder(double merge_distance) : merge_(merge_distance), heads_(1024, kNone) {}
 
 void MeshBuilder::reserve(std::size_t triangles) {
   mesh_.triangles.reserve(triangles);
   mesh_.vertices.reserve(triangles / 2 + 3);
-  grid_.reserve(triangles / 2 + 3);
+  next_.reserve(triangles / 2 + 3);
+  cells_.reserve(triangles / 2 + 3);
+  std::size_t slots = 1024;
+  while (slots < triangles) slots *= 2;  // about twice the vertices: short chains
+  heads_.assign(slots, kNone);
+}
+
+std::size_t MeshBuilder::slot(const Cell& c) const {
+  std::uint64_t h = 0;
+  for (const std::int64_t v : c) h = (h ^ static_cast<std::uint64_t>(v)) * 0x9E3779B97F4A7C15ull;
+  return static_cast<std::size_t>(h >> 29) & (heads_.size() - 1);
+}
+
+void MeshBuilder::grow() {
+  heads_.assign(heads_.size() * 2, kNone);
+  for (std::uint32_t v = 0; v < cells_.size(); ++v) {
+    const std::size_t s = slot(cells_[v]);
+    next_[v] = heads_[s];
+    heads_[s] = v;
+  }
 }
 
 bool MeshBuilder::find_in(const Cell& cell, const Vec3& p, std::uint32_t& index) const {
-  const auto [from, to] = grid_.equal_range(cell);
-  for (auto it = from; it != to; ++it) {
-    const Vec3& q = mesh_.vertices[it->second];
-    if (std::fabs(q.x - p.x) <= merge_ && std::fabs(q.y - p.y) <= merge_ && std::fabs(q.z - p.z) <= merge_) {
-      index = it->second;
+  for (std::uint32_t v = heads_[slot(cell)]; v != kNone; v = next_[v]) {
+    const Vec3& q = mesh_.vertices[v];
+    if (cells_[v] == cell && std::fabs(q.x - p.x) <= merge_ && std::fabs(q.y - p.y) <= merge_ &&
+        std::fabs(q.z - p.z) <= merge_) {
+      index = v;
       return true;
     }
   }
@@ -58,7 +70,11 @@ std::uint32_t MeshBuilder::weld(const Vec3& p) {
           return index;
   index = static_cast<std::uint32_t>(mesh_.vertices.size());
   mesh_.vertices.push_back(p);
-  grid_.emplace(cell, index);
+  cells_.push_back(cell);
+  const std::size_t s = slot(cell);
+  next_.push_back(heads_[s]);
+  heads_[s] = index;
+  if (cells_.size() > heads_.size() / 2) grow();
   return index;
 }
 
@@ -69,7 +85,9 @@ void MeshBuilder::add_triangle(const Vec3& a, const Vec3& b, const Vec3& c) {
 }
 
 Mesh MeshBuilder::take() {
-  grid_.clear();
+  heads_.clear();
+  next_.clear();
+  cells_.clear();
   return std::move(mesh_);
 }
 

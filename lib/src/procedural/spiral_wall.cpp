@@ -72,7 +72,7 @@ class LoopWalk {
 };
 
 int pieces_for(double lean, const SpiralWallOptions& o) {
-  return std::clamp(static_cast<int>(std::ceil(lean * o.pitch / o.tolerance)), 1, kMaxPieces);
+  return std::clamp(static_cast<int>(std::ceil(lean * o.pitch / (2 * o.tolerance))), 1, kMaxPieces);
 }
 
 }  // namespace
@@ -97,8 +97,10 @@ void spiral_wall(MeshSlicer& slicer, const SpiralWallOptions& o, Point2 from, st
       const LoopWalk walk(outline.line);
       const double s0 = walk.nearest(from), len = walk.length();
       walk.walk(s0 + len * j / pieces, s0 + len * (j + 1) / pieces, [&](double s, const Point2& p) {
-        // One expression for every Z, so that a turn's end and the next one's start are the same number.
-        const double z = o.base + (k + (s - s0) / len) * o.pitch;
+        // One expression for every Z, and the piece's ends exactly its fractions, so that where one
+        // piece or turn ends and the next begins the Z is the same number (not one rounding step apart).
+        const double f = std::clamp((s - s0) / len, static_cast<double>(j) / pieces, static_cast<double>(j + 1) / pieces);
+        const double z = o.base + (k + f) * o.pitch;
         const PathPoint point{p.x, p.y, z, std::min(z - o.base, o.pitch)};
         // Two points closer than X and Y are written would make a move of Z alone: the later one stands for both.
         if (!layer.points.empty() && std::hypot(p.x - layer.points.back().x, p.y - layer.points.back().y) < kMinStep)

@@ -11,7 +11,7 @@
 // The section is taken at the point's own height, to within the tolerance:
 // a turn is cut into M pieces, each on the section at its middle, M enough
 // that the steepest wall of the turn's band (MeshSlicer::band_lean) moves
-// the surface less than half the tolerance over half a piece's rise
+// the surface at most the tolerance over half a piece's rise
 // (lean x pitch / 2M). A vertical wall needs one section a turn; a
 // leaning or twisted one more, at most kMaxPieces.
 #include <vector>
