@@ -40,9 +40,6 @@ meshtest::TestMesh twins() {
   return a;
 }
 
-}  // namespace test_gc_shape_vase
-
-using namespace test_gc_shape_vase;
 
 TEST_CASE("gc-shape vase --mesh: on the surface, one turn a layer, through gc-layers", "[gc-shape][mesh]") {
   for (const meshtest::TestMesh& mesh : {meshtest::wavy_vase(), meshtest::star()}) {
@@ -131,3 +128,5 @@ TEST_CASE("gc-shape vase --mesh refuses islands, holes, oversize, bad and empty 
   CHECK(missing.status == 1);
   CHECK(missing.err.find("--mesh /no/such.stl") != std::string::npos);
 }
+
+}  // namespace test_gc_shape_vase

@@ -42,9 +42,6 @@ void judge(const meshtest::VaseCheck& c, int layers, int bottom_layers) {
   if (bottom_layers > 0) meshtest::judge_bottom(c);
 }
 
-}  // namespace test_mesh_vase
-
-using namespace test_mesh_vase;
 
 TEST_CASE("mesh vase: every test mesh on its surface, rising, one bead, filled below", "[shape][mesh]") {
   for (const meshtest::TestMesh& mesh : {meshtest::cylinder(), meshtest::wavy_vase(), meshtest::twisted_prism(),
@@ -64,3 +61,5 @@ TEST_CASE("mesh vase: a sloppy ASCII export prints as the clean binary does", "[
   const meshtest::VaseCheck c = meshtest::check_vase(text, mesh);
   judge(c, layers, 3);
 }
+
+}  // namespace test_mesh_vase

@@ -23,9 +23,6 @@ std::string refusal(const std::string& bytes) {
   return "";
 }
 
-}  // namespace test_stl_reader
-
-using namespace test_stl_reader;
 
 TEST_CASE("stl_reader: a binary file whose header begins with solid, welded", "[shape][mesh]") {
   const meshtest::TestMesh cyl = meshtest::cylinder(15, 12, 48);
@@ -68,3 +65,5 @@ TEST_CASE("stl_reader: truncated, NaN, empty, broken words: refused with where",
   CHECK(refusal("solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 0 0 0.0001\nvertex 0 0.0001 0\n"
                 "endloop\nendfacet\nendsolid x\n") == "m.stl: no triangles (an empty mesh)");
 }
+
+}  // namespace test_stl_reader

@@ -23,7 +23,7 @@ struct BottomFillOptions {
 };
 
 // Appends one layer each to `out`; the first layer's first point is where
-// the path starts (a travel there, as every layer's first). Heights it cannot fill go to `problems`.
+// the path starts, every later layer's first is reached by a travel. Heights it cannot fill go to `problems`.
 void bottom_fill(MeshSlicer& slicer, const BottomFillOptions& options, std::vector<ShapeLayer>& out,
                  HeightProblems& problems);
 
