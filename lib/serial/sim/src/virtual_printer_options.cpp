@@ -85,6 +85,8 @@ void parse_virtual_options(std::string_view text, VirtualPrinterConfig& c) {
       c.advanced_ok = parse_flag(key, value);
     } else if (key == "instant-moves") {
       c.instant_moves = parse_flag(key, value);
+    } else if (key == "simulated-clock") {
+      c.simulated_clock = value.empty() ? VirtualPrinterConfig::kHostLatency : parse_value(key, value);
     } else if (key == "report-link") {
       c.report_link = parse_flag(key, value);
     } else if (key == "heat-rate") {

@@ -32,6 +32,13 @@ struct VirtualPrinterConfig {
   bool resend_ok = true;      // an "ok" follows "Resend: n" (Marlin's does; some firmwares send none)
   double idle_wait = 0;       // "wait" every this many seconds while idle (Marlin's NO_TIMEOUTS), 0: never
   bool instant_moves = false; // moves take no time: the link is the only limit
+  // gc-send's clock is the simulation's (EventLoop::use_simulated_clock)
+  // when >= 0: each time gc-send wakes it takes this many seconds (its
+  // latency, as a quiet host's), and nothing else of the host counts, so a
+  // run's figures are the same on a loaded machine (tests that judge pacing
+  // on them). In-process printer only. "simulated-clock" alone: 50 us.
+  double simulated_clock = -1;
+  static constexpr double kHostLatency = 50e-6;
   bool report_link = true;    // M115 names TIME_SCALE and BAUD (a real firmware does not)
   double heat_rate = 10;      // degrees per second (the bed heats at a third of it)
   // Faults: probabilities per received line / per answer.
@@ -51,7 +58,7 @@ struct VirtualPrinterConfig {
 
 // Applies "key=value,key=value" (the part after "virtual:") to `config`.
 // Keys: firmware user-seconds resend-ok idle-wait baud queue rx max-line planner time-scale speed-factor advanced-ok instant-moves
-// report-link heat-rate corrupt drop-ok resend garbage busy silent-after
+// simulated-clock report-link heat-rate corrupt drop-ok resend garbage busy silent-after
 // halt-after disconnect-after seed log greeting, and scheduled faults
 // (virtual_fault.hpp: "reset@line=N", "drop=S@time=T"). Throws std::invalid_argument naming a bad key or value.
 void parse_virtual_options(std::string_view text, VirtualPrinterConfig& config);
