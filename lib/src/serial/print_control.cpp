@@ -219,7 +219,7 @@ void PrintControl::withdraw_unsent() {
 
 // What the sender has sent can no longer be taken back.
 void PrintControl::forget_sent() {
-  ledger_.sent_through(sender_.last_submitted() - static_cast<long long>(sender_.pending()));
+  ledger_.keep_unsent(sender_.pending());
 }
 
 // Lines of its own go to the sender: what came before them cannot be taken
