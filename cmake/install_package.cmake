@@ -2,7 +2,8 @@
 #
 #   component "tools" (the default): bin/gc-*, share/man/man1/gc-*.1,
 #     share/bash-completion/completions/gc-*          -> gcode-tools_<v>_<arch>.deb
-#   component "dev": include/gcode/**, lib/libgcode.a, lib/libgcode_cli.a,
+#   component "dev": include/gcode/**, lib/libgcode.a, lib/libgcode_serial_*.a
+#     (gc-send's wings), lib/libgcode_cli.a,
 #     lib/cmake/gcode-tools/ (find_package(gcode-tools) gives the targets
 #     gcode-tools::gcode, the library, and gcode-tools::gcode_cli, the
 #     command-line front end on top of it, for programs that look like gc tools)
@@ -10,10 +11,12 @@
 include(CMakePackageConfigHelpers)
 set(GCODE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/gcode-tools)
 
-install(TARGETS gcode gcode_cli EXPORT gcode-tools-targets
+get_property(gcode_serial_wings GLOBAL PROPERTY GCODE_SERIAL_WINGS)
+install(TARGETS gcode ${gcode_serial_wings} gcode_cli EXPORT gcode-tools-targets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(DIRECTORY lib/include/gcode cli/include/gcode DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT dev)
+file(GLOB gcode_serial_includes LIST_DIRECTORIES true ${CMAKE_SOURCE_DIR}/lib/serial/*/include/gcode)
+install(DIRECTORY lib/include/gcode ${gcode_serial_includes} cli/include/gcode DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT dev)
 install(FILES ${CMAKE_BINARY_DIR}/lib/generated/gcode/version.hpp
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/gcode COMPONENT dev)
 install(EXPORT gcode-tools-targets NAMESPACE gcode-tools:: DESTINATION ${GCODE_CMAKE_DIR} COMPONENT dev)
@@ -24,7 +27,12 @@ install(EXPORT gcode-tools-targets NAMESPACE gcode-tools:: DESTINATION ${GCODE_C
 # absolute paths) where this scope sees the target, else by pkg-config
 # again, the module named as the target in lower case (PkgConfig::STB: stb).
 set(GCODE_PKGCONFIG_TARGETS "")
-get_target_property(gcode_links gcode LINK_LIBRARIES)
+set(gcode_links "")
+foreach(target gcode ${gcode_serial_wings})
+  get_target_property(links ${target} LINK_LIBRARIES)
+  list(APPEND gcode_links ${links})
+endforeach()
+list(REMOVE_DUPLICATES gcode_links)
 foreach(lib IN LISTS gcode_links)
   if(NOT lib MATCHES "^PkgConfig::(.+)$")
     continue()

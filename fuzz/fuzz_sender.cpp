@@ -1,5 +1,5 @@
 // libFuzzer target: the printer-reply parser and the sender's state machine
-// (gcode/serial/protocol.hpp, sender.hpp) on arbitrary printer behaviour.
+// (gcode/serial/protocol/protocol.hpp, sender.hpp) on arbitrary printer behaviour.
 //
 // The first bytes pick a configuration (flow mode, queue, buffer, line limit,
 // handshake, how many commands and which are junk or over-long); the rest is
@@ -31,9 +31,9 @@
 #include <string_view>
 #include <vector>
 
-#include "gcode/serial/line_check.hpp"
-#include "gcode/serial/protocol.hpp"
-#include "gcode/serial/sender.hpp"
+#include "gcode/serial/protocol/line_check.hpp"
+#include "gcode/serial/protocol/protocol.hpp"
+#include "gcode/serial/sender/sender.hpp"
 
 namespace {
 

@@ -4,11 +4,13 @@
 # the pages stay: a renamed file or class makes this fail, not a reader.
 #
 # In every `code span` of the pages:
-#  * a path (`lib/src/serial/sender.cpp`, `tools/gc-send/`) exists; a short
-#    one (`core/line.hpp`, `serial/sender.cpp`) exists under the library's
-#    include or source folders; a bare file name (`stage.hpp`) somewhere in
+#  * a path (`lib/serial/sender/src/sender.cpp`, `tools/gc-send/`) exists; a short
+#    one (`core/line.hpp`, `serial/sender/sender.cpp`) exists under the library's
+#    include or source folders (a wing's: lib/serial/sender/); a bare file name (`stage.hpp`) somewhere in
 #    the sources; spans with a placeholder (<name>, NAME) or a blank are
-#    commands or patterns and are skipped;
+#    commands or patterns and are skipped, and so are absolute paths
+#    (`/dev/serial/by-id/`) and build trees (`build-asan/`), which are
+#    not the repository's;
 #  * a type (`PrintControl`) is defined: class, struct, enum or using;
 #  * `Type::member` names a member the type's sources mention;
 #  * a call (`gcode_tool()`, `reads_state()`) names a function that exists;
@@ -23,10 +25,12 @@ set -euo pipefail
 root=$(cd "${1:-$(dirname "$0")/..}" && pwd)
 shift || true
 pages=("$@")
-if [ ${#pages[@]} -eq 0 ]; then
-  pages=(docs/architecture.md docs/gc-send-code-flow.md docs/recipes.md docs/writing-a-tool.md)
-fi
 cd "$root"
+# Every page of docs/: the developer guide and the tools' pages, whose
+# examples and file names must stay as real as the guide's.
+if [ ${#pages[@]} -eq 0 ]; then
+  pages=(docs/*.md)
+fi
 
 # Where code lives (the front end may sit in lib/ or in cli/).
 code_dirs=()
@@ -47,6 +51,13 @@ path_exists() {
   done
   # cli/src/tool.cpp for a short "cli/tool.cpp"
   [ -e "cli/src/${p#cli/}" ] && return 0
+  # gc-send's wings: "serial/sender/sender.hpp", "serial/sender/sender.cpp", "serial/sender/"
+  if [[ $p == serial/* ]]; then
+    local wing=${p#serial/}
+    wing=${wing%%/*}
+    [ -e "lib/serial/$wing/include/gcode/$p" ] && return 0
+    [ -e "lib/serial/$wing/src/${p#serial/"$wing"/}" ] && return 0
+  fi
   return 1
 }
 
@@ -95,7 +106,7 @@ for page in "${pages[@]}"; do
     for word in $made_up; do [[ $span == *"$word"* ]] && skip=true; done
     $skip && continue
     case $span in
-      //* | *' '* | *'<'* | *NAME* | *'*'* | *'$'* | *'{'* | *'='* | *'"'* | *"'"* | *...* | -*) continue ;;
+      /* | build* | *' '* | *'<'* | *NAME* | *'*'* | *'$'* | *'{'* | *'='* | *'"'* | *"'"* | *...* | -*) continue ;;
     esac
     if [[ $span =~ ^gc-[a-z-]+$ ]]; then
       [ -d "tools/$span" ] || fail "$page: \`$span\`: no tools/$span/"
@@ -133,7 +144,7 @@ if [ -f "$parts" ]; then
     stem=${header##*/}
     stem=${stem%.hpp}
     [ -n "${named[$stem]+set}" ] || fail "$parts: the parts table does not name $header: add \`$stem\` to its room's row"
-  done < <(find lib/include/gcode cli/include/gcode -mindepth 2 -name '*.hpp' 2>/dev/null | sort)
+  done < <(find lib/include/gcode lib/serial/*/include/gcode cli/include/gcode -mindepth 2 -name '*.hpp' 2>/dev/null | sort)
 fi
 
 if [ "$failures" -gt 0 ]; then

@@ -4,17 +4,24 @@
 # planted fault of every kind):
 #
 #   lib/   libgcode, in rooms (docs/architecture.md, "The one-way rule"):
-#          core; pipeline; transform and report; litho and serial
+#          core; pipeline; transform and report; litho and procedural
+#   lib/serial/<wing>/   gc-send's room in wings, one library each on top of
+#          libgcode: link and protocol; sender and journal on them; control
+#          on the sender; sim (the simulated printer) on protocol and link
+#          only; job on every wing but sim
 #   cli/   libgcode_cli, the command-line front end, on top of all of them
 #
 #  * a file of a room includes headers of its own room and of the rooms it
 #    may use (the table below, the same as docs/architecture.md's) only: so
 #    nothing in lib/ includes a gcode/cli/ header, core includes only core,
-#    and litho and serial do not include each other;
+#    litho and serial do not include each other, and the simulated printer
+#    includes no sender, journal, control or job header;
+#  * a wing's headers are under its own name (lib/serial/W/include/gcode/serial/W/);
 #  * no file in lib/ includes CLI11 (<CLI/...>): the library knows no command line;
-#  * the front end lives in cli/ (no lib/include/gcode/cli/, no lib/src/cli/);
+#  * the front end lives in cli/ (no lib/include/gcode/cli/, no lib/src/cli/),
+#    gc-send's room in its wings (no lib/include/gcode/serial/, no lib/src/serial/);
 #  * no include circle: a piece (its .hpp and .cpp together, e.g.
-#    core/machine_state) never reaches itself through the pieces it includes;
+#    core/machine_state, serial/sender/sender) never reaches itself through the pieces it includes;
 #  * every "gcode/..." include names a header that exists.
 #
 #   scripts/check-includes.sh [SOURCE_DIR]
@@ -28,22 +35,35 @@ declare -A uses=(
   [transform]="core pipeline"
   [report]="core pipeline"
   [litho]="core pipeline report"
-  [serial]="core pipeline transform report"
   [procedural]="core"
-  [cli]="core pipeline transform report litho serial procedural"
+  [serial/link]="core pipeline transform report"
+  [serial/protocol]="core pipeline transform report"
+  [serial/sender]="core pipeline transform report serial/protocol serial/link"
+  [serial/journal]="core pipeline transform report serial/protocol serial/link"
+  [serial/control]="core pipeline transform report serial/sender serial/protocol serial/link"
+  [serial/sim]="core pipeline transform report serial/protocol serial/link"
+  [serial/job]="core pipeline transform report serial/control serial/journal serial/sender serial/protocol serial/link"
+  [cli]="core pipeline transform report litho procedural serial/job serial/control serial/journal serial/sender serial/protocol serial/link serial/sim"
 )
 
-# Prints "LAYER PATH" for every file of the library and the front end.
+# Prints "ROOM PATH" for every file of the library and the front end (a
+# wing's room is serial/WING; a header under another wing's name than its
+# folder's gets a room that is none: serial/FOLDER:NAME).
 files_of() {
-  local root=$1 path room
+  local root=$1 path room wing
   while IFS= read -r path; do
     case $path in
-      lib/include/gcode/*/*) room=${path#lib/include/gcode/} ;;
-      lib/src/*/*) room=${path#lib/src/} ;;
-      cli/include/gcode/cli/* | cli/src/*) room=cli/ ;;
+      lib/serial/*/include/gcode/serial/*/*)
+        wing=${path#lib/serial/}; wing=${wing%%/*}
+        room=${path#lib/serial/"$wing"/include/gcode/serial/}; room=${room%%/*}
+        if [ "$room" = "$wing" ]; then room=serial/$wing; else room=serial/$wing:$room; fi ;;
+      lib/serial/*/src/*) room=${path#lib/serial/}; room=serial/${room%%/*} ;;
+      lib/serial/*) room=serial/? ;;
+      lib/include/gcode/*/* | lib/src/*/*) room=${path#lib/include/gcode/}; room=${room#lib/src/}; room=${room%%/*} ;;
+      cli/include/gcode/cli/* | cli/src/*) room=cli ;;
       *) continue ;;
     esac
-    echo "${room%%/*} $path"
+    echo "$room $path"
   done < <(cd "$root" && find lib cli -type f \( -name '*.hpp' -o -name '*.cpp' -o -name '*.h' \) 2>/dev/null | sort)
 }
 
@@ -65,8 +85,15 @@ check() {
       failures=$((failures + 1))
     fi
   done
+  for dir in lib/include/gcode/serial lib/src/serial; do
+    if [ -e "$root/$dir" ]; then
+      echo "check-includes: $dir/: gc-send's room lives in its wings (lib/serial/WING/include/gcode/serial/WING/, lib/serial/WING/src/)" >&2
+      failures=$((failures + 1))
+    fi
+  done
   files_of "$root" >"$list"
-  (cd "$root" && find lib/include/gcode cli/include/gcode -type f 2>/dev/null | sed 's|^[a-z]*/include/gcode/||') >"$headers"
+  (cd "$root" && find lib/include/gcode lib/serial/*/include/gcode cli/include/gcode -type f 2>/dev/null |
+    sed 's|^.*/include/gcode/||') >"$headers"
   # One pass over every file's include lines (a shell loop a line took
   # seconds): prints the problems to stderr, the includes between pieces to
   # $edges, and the count of problems last.
@@ -82,6 +109,10 @@ check() {
     FNR == NR { exists[$0] = 1; next }
     {
       room = $1; path = $2
+      if (room ~ /:/) {
+        problem(path ": a header of the wing " substr(room, 1, index(room, ":") - 1) " under another wing'\''s name: it belongs in lib/serial/WING/include/gcode/serial/WING/")
+        next
+      }
       if (!(room in uses)) {
         problem(path ": '\''" room "'\'' is no room of the library (scripts/check-includes.sh, docs/architecture.md)")
         next
@@ -101,7 +132,9 @@ check() {
         if (!match(text, /^[ \t]*#[ \t]*include[ \t]*["<]gcode\/[^">]+[">]/)) continue
         target = substr(text, RSTART, RLENGTH); sub(/^[^"<]*["<]gcode\//, "", target); sub(/[">]$/, "", target)
         if (target == "version.hpp") continue  # generated by CMake, includes nothing
+        # A room is the first folder of the path, a wing the first two (serial/sender).
         target_room = target; sub(/\/.*/, "", target_room)
+        if (target_room == "serial") { target_room = target; sub(/^serial\//, "", target_room); sub(/\/.*/, "", target_room); target_room = "serial/" target_room }
         if (!(target in exists)) { problem(path ":" number ": gcode/" target " does not exist"); continue }
         if (target_room != room && index(uses[room], " " target_room " ") == 0) {
           allowed = uses[room]; gsub(/^ +| +$/, "", allowed)
@@ -152,7 +185,7 @@ self_test() {
     fi
   }
   plant "a library file including a cli/ header" \
-    sed -i '1a #include "gcode/cli/tool.hpp"' lib/src/serial/send_job.cpp
+    sed -i '1a #include "gcode/cli/tool.hpp"' lib/serial/job/src/send_job.cpp
   plant "a library header including CLI11" \
     sed -i '1a #include <CLI/CLI.hpp>' lib/include/gcode/core/line.hpp
   plant "report including transform, its sibling" \
@@ -160,7 +193,17 @@ self_test() {
   plant "core including a higher room" \
     sed -i '1a #include "gcode/pipeline/stage.hpp"' lib/src/core/line.cpp
   plant "litho and serial including each other" \
-    sed -i '1a #include "gcode/serial/sender.hpp"' lib/src/litho/image.cpp
+    sed -i '1a #include "gcode/serial/sender/sender.hpp"' lib/src/litho/image.cpp
+  plant "the simulated printer including the sender" \
+    sed -i '1a #include "gcode/serial/sender/sender.hpp"' lib/serial/sim/src/virtual_printer.cpp
+  plant "the protocol including a wing above it (the journal)" \
+    sed -i '1a #include "gcode/serial/journal/journal.hpp"' lib/serial/protocol/include/gcode/serial/protocol/pacer.hpp
+  plant "a wing's header under another wing's name" \
+    sh -c 'mkdir -p lib/serial/sim/include/gcode/serial/sender && mv lib/serial/sender/include/gcode/serial/sender/sender.hpp lib/serial/sim/include/gcode/serial/sender/'
+  plant "gc-send's room back under lib/src/serial/" \
+    sh -c 'mkdir -p lib/src/serial && cp lib/serial/link/src/port.cpp lib/src/serial/'
+  plant "an include circle inside a wing" \
+    sed -i '1a #include "gcode/serial/protocol/flow_control.hpp"' lib/serial/protocol/include/gcode/serial/protocol/protocol.hpp
   plant "an include circle inside core" \
     sed -i '1a #include "gcode/core/machine_state.hpp"' lib/include/gcode/core/arc.hpp
   plant "a front-end header back under lib/" \

@@ -9,7 +9,7 @@
 # tree's objects instead of compiling the library a third time. Line tables
 # only (-gline-tables-only) and -O1 there, the test files at -O0
 # (tests/CMakeLists.txt): the sanitizers' reports keep file and line, the
-# build is lighter (README, "How long scripts/test.sh takes").
+# build is lighter (docs/testing.md).
 #
 # ctest runs 3 x cores slots: a test that keeps a core busy takes three, one
 # of gc-send's tests (mostly waiting for the virtual printer) one

@@ -5,10 +5,12 @@
 #include <unistd.h>
 
 #include <charconv>
+#include <memory>
 
-#include "gcode/serial/control_fifo.hpp"
-#include "gcode/serial/journal.hpp"
-#include "gcode/serial/line_check.hpp"
+#include "gcode/serial/control/control_fifo.hpp"
+#include "gcode/serial/journal/journal.hpp"
+#include "gcode/serial/protocol/line_check.hpp"
+#include "gcode/serial/sim/virtual_printer_link.hpp"
 #include "gcode/transform/custom_gcode.hpp"
 
 namespace gcode::cli {
@@ -148,9 +150,14 @@ void resolve_send_options(Tool& tool, SendOptions& o) {
   s.pace = !o.no_pace;
   s.read_ahead = 1;
   if (serial::is_virtual_port(j.port) && j.port.size() > 7)
-    serial::parse_virtual_options(std::string_view(j.port).substr(8), j.vconfig);
+    serial::parse_virtual_options(std::string_view(j.port).substr(8), o.vconfig);
   if (serial::is_virtual_port(j.port) && app.count("--baud") > 0 && j.port.find("baud=") == std::string::npos)
-    j.vconfig.baud = j.baud;
+    o.vconfig.baud = j.baud;
+  // The far end: the simulated printer for virtual[:OPTIONS], else the job opens the port.
+  if (serial::is_virtual_port(j.port))
+    j.link = [config = o.vconfig](serial::EventLoop& loop, double, Diagnostics&) {
+      return std::make_unique<serial::VirtualPrinterLink>(loop, config);
+    };
   std::string_view codes = o.pause_on;
   while (!codes.empty()) {
     std::size_t comma = codes.find(',');

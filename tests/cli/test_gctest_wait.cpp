@@ -1,5 +1,5 @@
 // gctest-wait, the tool tests' wait for what a running process writes
-// (support/gctest_wait.cpp): the gc-send tests' kill and reset moments
+// (support/programs/gctest_wait.cpp): the gc-send tests' kill and reset moments
 // stand on it.
 #include <string>
 

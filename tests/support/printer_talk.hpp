@@ -5,8 +5,8 @@
 #include <string_view>
 #include <vector>
 
-#include "gcode/serial/protocol.hpp"
-#include "gcode/serial/virtual_printer.hpp"
+#include "gcode/serial/protocol/protocol.hpp"
+#include "gcode/serial/sim/virtual_printer.hpp"
 
 namespace gctest {
 

@@ -1,5 +1,5 @@
 // The line parser as it was before the single-pass rewrite, kept as the
-// reference the new one is compared with (tests/unit/test_line.cpp and the
+// reference the new one is compared with (tests/unit/core/test_line.cpp and the
 // fuzzer): the same fields for every input.
 #include "reference_line.hpp"
 

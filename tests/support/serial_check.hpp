@@ -7,7 +7,7 @@
 
 #include "gcode/core/line.hpp"
 #include "gcode/core/line_reader.hpp"
-#include "gcode/serial/protocol.hpp"
+#include "gcode/serial/protocol/protocol.hpp"
 
 namespace gctest {
 

@@ -76,7 +76,7 @@ std::string wait_until(const std::string& condition, int tries = 1000, double pa
 // to `tries` x `every` seconds, and no longer than process `while_alive`
 // lives. Then the script goes on, as after wait_until. Every field but
 // the numbers is a shell word as the script writes it (quote() a literal);
-// empty: not given. One process (gctest-wait, support/gctest_wait.cpp)
+// empty: not given. One process (gctest-wait, support/programs/gctest_wait.cpp)
 // reads what the file gained each turn, where a shell loop would start a
 // grep and a sleep.
 struct LinesWait {

@@ -7,8 +7,8 @@
 
 #include "gcode/cli/send_options.hpp"
 #include "gcode/cli/tool.hpp"
-#include "gcode/serial/port.hpp"
-#include "gcode/serial/send_job.hpp"
+#include "gcode/serial/job/send_job.hpp"
+#include "gcode/serial/link/port.hpp"
 #include "gcode/transform/custom_gcode.hpp"
 
 namespace {

@@ -3,7 +3,7 @@
 // connect to it like a USB printer.
 #include "gcode/cli/tool.hpp"
 #include "gcode/cli/virtual_printer_options.hpp"
-#include "gcode/serial/virtual_printer_runner.hpp"
+#include "gcode/serial/sim/virtual_printer_runner.hpp"
 
 int main(int argc, char** argv) {
   gcode::cli::VirtualPrinterToolOptions o;

@@ -8,12 +8,14 @@
 
 #include "gcode/cli/pause_options.hpp"
 #include "gcode/cli/tool.hpp"
-#include "gcode/serial/send_job.hpp"
+#include "gcode/serial/job/send_job.hpp"
+#include "gcode/serial/sim/virtual_printer.hpp"
 
 namespace gcode::cli {
 
 struct SendOptions {
   serial::SendJob job;
+  serial::VirtualPrinterConfig vconfig;  // --port virtual[:OPTIONS]: the simulated printer job.link makes
   FilterOptions io;         // FILE, --layer-marker, --e-mode: read as every tool reads G-code
   PauseOptions pause;
   std::string flow = "window";

@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "gcode/cli/tool.hpp"
-#include "gcode/serial/virtual_fault.hpp"
-#include "gcode/serial/virtual_printer_options.hpp"
-#include "gcode/serial/virtual_printer_runner.hpp"
+#include "gcode/serial/sim/virtual_fault.hpp"
+#include "gcode/serial/sim/virtual_printer_options.hpp"
+#include "gcode/serial/sim/virtual_printer_runner.hpp"
 
 namespace gcode::cli {
 

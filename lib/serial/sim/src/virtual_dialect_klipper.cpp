@@ -1,0 +1,103 @@
+// Klipper as a host meets it on its pseudo-terminal (klippy/gcode.py,
+// gcode_move.py, toolhead.py): no greeting, line numbers and checksums
+// read and ignored, an unknown command answered '// Unknown command:"X"'
+// and ok, an error "!! ..." and ok, M115 answered on its ok line, and
+// after a shutdown every command refused (with its ok) until
+// FIRMWARE_RESTART.
+#include <array>
+#include <string_view>
+
+#include <fmt/format.h>
+
+#include "gcode/core/firmware.hpp"
+#include "gcode/core/line.hpp"
+#include "gcode/serial/sim/virtual_dialect.hpp"
+#include "gcode/serial/sim/virtual_printer_options.hpp"
+
+namespace gcode::serial {
+
+namespace {
+
+// The standard commands of docs/G-Codes.md (with [gcode_arcs] and
+// [firmware_retraction] configured, as on most printers).
+constexpr CommandCode kKnown[] = {
+    {'G', 0},   {'G', 1},   {'G', 2},   {'G', 3},   {'G', 4},   {'G', 10},  {'G', 11},  {'G', 28},  {'G', 90},
+    {'G', 91},  {'G', 92},  {'M', 18},  {'M', 73},  {'M', 82},  {'M', 83},  {'M', 84},  {'M', 104}, {'M', 105},
+    {'M', 106}, {'M', 107}, {'M', 109}, {'M', 110}, {'M', 112}, {'M', 114}, {'M', 115}, {'M', 117}, {'M', 118},
+    {'M', 140}, {'M', 190}, {'M', 204}, {'M', 220}, {'M', 221}, {'M', 400},
+};
+
+// Extended commands every Klipper has.
+constexpr std::array<std::string_view, 6> kKnownExtended = {"FIRMWARE_RESTART", "RESTART", "STATUS", "HELP",
+                                                            "SET_VELOCITY_LIMIT", "GET_POSITION"};
+
+class KlipperDialect final : public ReplyDialect {
+ public:
+  const DialectBehaviour& behaviour() const override {
+    static const DialectBehaviour b = [] {
+      DialectBehaviour k;
+      k.checks_line_numbers = false;
+      k.busy_keepalive = false;
+      k.buffer_seconds = 2.0;  // toolhead.py buffer_time_high
+      k.reads_everything = true;
+      k.moves_need_homing = true;
+      k.shutdown_answers = true;
+      k.report_on_ok = true;
+      k.empty_move_waits = false;  // answered at once: its queue is seconds of motion, not blocks
+      return k;
+    }();
+    return b;
+  }
+  std::string_view name() const override { return "klipper"; }
+  std::string greeting() const override { return ""; }
+  std::vector<std::string> restart_greeting(GreetingForm) const override { return {"// Klipper state: Ready"}; }
+  std::string ok(long long, bool, int, int) const override { return "ok"; }
+
+  bool knows(const Line& line) const override {
+    if (line.kind == CommandKind::Host) return false;
+    if (line.kind == CommandKind::Extended) {
+      std::string_view code = line.code();
+      code = code.substr(0, code.find(' '));
+      for (std::string_view k : kKnownExtended)
+        if (k == code) return true;
+      return false;
+    }
+    if (line.letter == 'T') return true;
+    for (const CommandCode& c : kKnown)
+      if (line.is(c.letter, c.number)) return true;
+    return false;
+  }
+  std::string unknown_command(std::string_view code) const override {
+    return fmt::format("// Unknown command:\"{}\"", code.substr(0, code.find(' ')));
+  }
+  std::string not_homed(double x, double y, double z, double e) const override {
+    return fmt::format("!! Must home axis first: {:.3f} {:.3f} {:.3f} [{:.3f}]", x, y, z, e);
+  }
+  std::vector<std::string> refused_while_shut_down(std::string_view why) const override {
+    // The state message as respond_info lines, then its first line as the error.
+    return {fmt::format("// {}", why), "// Correct the cause, then FIRMWARE_RESTART resets the firmware,",
+            "// reloads the config and restarts the host software.", "// Printer is shutdown",
+            fmt::format("!! {}", why)};
+  }
+
+  std::string temperatures(const Temperatures& t, bool) const override {
+    return fmt::format("T:{:.1f} /{:.1f} B:{:.1f} /{:.1f}", t.hotend, t.hotend_target, t.bed, t.bed_target);
+  }
+  std::string position(double x, double y, double z, double e, long, long, long) const override {
+    return fmt::format("X:{:.3f} Y:{:.3f} Z:{:.3f} E:{:.3f}", x, y, z, e);
+  }
+  std::vector<std::string> firmware_report(const VirtualPrinterConfig& config) const override {
+    return {fmt::format("ok FIRMWARE_NAME:Klipper FIRMWARE_VERSION:v0.12.0-gc-virtual-printer{}", link_report(config))};
+  }
+  std::string halted() const override { return "// Klipper state: Shutdown"; }
+  std::string thermal_runaway() const override { return "// Heater extruder not heating at expected rate"; }
+};
+
+}  // namespace
+
+const ReplyDialect& klipper_dialect() {
+  static const KlipperDialect dialect;
+  return dialect;
+}
+
+}  // namespace gcode::serial

@@ -1,0 +1,166 @@
+// Each firmware's replies and ways in the virtual printer
+// (gcode/serial/sim/virtual_dialect.hpp): Klipper's pseudo-terminal, Prusa's
+// own pause and silent waits, RepRapFirmware's errors and "rs n". The
+// expected lines follow each firmware's own wording (klippy/gcode.py and
+// toolhead.py, Prusa-Firmware's messages.c, Duet3D's G-code reference).
+#include <catch2/catch.hpp>
+
+#include <string>
+#include <vector>
+
+#include "gcode/serial/sim/virtual_dialect.hpp"
+#include "gcode/serial/sim/virtual_printer.hpp"
+#include "gcode/serial/sim/virtual_printer_options.hpp"
+#include "printer_talk.hpp"
+
+using namespace gcode::serial;
+using gctest::answers;
+using gctest::numbered;
+using Lines = std::vector<std::string>;
+
+namespace {
+
+VirtualPrinterConfig flavour(const char* name) {
+  VirtualPrinterConfig c;
+  c.firmware = name;
+  c.report_link = false;
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("virtual dialects by name, firmware= and user-seconds= options", "[serial][dialect]") {
+  CHECK(find_dialect("marlin") == &marlin_dialect());
+  CHECK(find_dialect("Klipper") == &klipper_dialect());
+  CHECK(find_dialect("prusa") == &prusa_dialect());
+  CHECK(find_dialect("rrf") == &rrf_dialect());
+  CHECK(find_dialect("reprapfirmware") == &rrf_dialect());
+  CHECK(find_dialect("smoothie") == nullptr);
+  for (std::string_view name : kVirtualFirmwares) CHECK(find_dialect(name) != nullptr);
+  VirtualPrinterConfig c;
+  parse_virtual_options("firmware=klipper,user-seconds=12", c);
+  CHECK(c.firmware == "klipper");
+  CHECK(c.user_seconds == 12);
+  CHECK_THROWS_AS(parse_virtual_options("firmware=smoothie", c), std::invalid_argument);
+}
+
+TEST_CASE("virtual Klipper: no greeting, numbers ignored, unknown commands and moves before homing answered with ok",
+          "[serial][dialect]") {
+  VirtualPrinter p(flavour("klipper"));
+  CHECK(answers(p, 1).empty());  // a pseudo-terminal greets nobody
+  // Wrong numbers, a wrong checksum, M110: all taken as they are.
+  p.receive("M110 N0\nN7 G90*1\n" + numbered(3, "G91") + "M201 X1000\nG1 X10 F600\n", 1);
+  CHECK(answers(p, 2) == Lines{"ok", "ok", "ok", "// Unknown command:\"M201\"", "ok",
+                               "!! Must home axis first: 0.000 0.000 0.000 [0.000]", "ok"});
+  CHECK(p.stats().checksum_errors == 0);
+  CHECK(p.stats().line_number_errors == 0);
+  p.receive("M115\nM105\nM114\n", 2);
+  CHECK(answers(p, 3) == Lines{"ok FIRMWARE_NAME:Klipper FIRMWARE_VERSION:v0.12.0-gc-virtual-printer",
+                               "ok T:20.0 /0.0 B:20.0 /0.0", "X:0.000 Y:0.000 Z:0.000 E:0.000", "ok"});
+}
+
+TEST_CASE("virtual Klipper: moves answered at once until 2 s of motion are queued, no busy while homing",
+          "[serial][dialect]") {
+  VirtualPrinterConfig c = flavour("klipper");
+  c.planner = 2;  // Marlin's planner size plays no part
+  VirtualPrinter p(c);
+  p.receive("G28\n", 0);
+  Lines homed = answers(p, 4);  // 3 s of homing, not a word until its ok
+  CHECK(homed == Lines{"ok"});
+  // Six moves of 0.5 s each (10 mm at 1200 mm/min): five are answered at
+  // once (up to 2 s queued), the sixth once the first has run.
+  for (int i = 1; i <= 6; ++i) p.receive("G1 X" + std::to_string(10 * i) + " F1200\n", 4);
+  CHECK(answers(p, 4.01).size() == 5);
+  CHECK(answers(p, 4.6).size() == 1);
+}
+
+TEST_CASE("virtual Klipper: M112 shuts it down, every command refused with its ok until FIRMWARE_RESTART",
+          "[serial][dialect]") {
+  VirtualPrinter p(flavour("klipper"));
+  p.receive("G28\nM112\n", 0);  // M112 overtakes the homing
+  Lines a = answers(p, 1);
+  REQUIRE(a.size() >= 1);
+  CHECK(a[0] == "// Klipper state: Shutdown");
+  CHECK(p.halted());
+  answers(p, 5);
+  p.receive("G1 X5\nM105\n", 5);
+  Lines refused = answers(p, 6);
+  REQUIRE(refused.size() >= 3);
+  CHECK(refused[0] == "// Shutdown due to M112 command");
+  CHECK(refused[refused.size() - 3] == "!! Shutdown due to M112 command");
+  CHECK(refused[refused.size() - 2] == "ok");
+  CHECK(refused.back().rfind("ok T:", 0) == 0);  // M105 still answers
+  p.receive("FIRMWARE_RESTART\n", 6);
+  // (The restart loses what was on its way, its ok too.)
+  CHECK(answers(p, 7) == Lines{"// Klipper state: Ready"});
+  CHECK_FALSE(p.halted());
+  p.receive("G4 P10\n", 7);
+  CHECK(answers(p, 8) == Lines{"ok"});
+}
+
+TEST_CASE("virtual Prusa: M601 answers, pauses after the moves, holds commands until the user resumes",
+          "[serial][dialect]") {
+  VirtualPrinterConfig c = flavour("prusa");
+  c.user_seconds = 10;
+  VirtualPrinter p(c);
+  CHECK(answers(p, 1) == Lines{"start"});
+  p.receive("M110 N0\n" + numbered(1, "G1 X10 F600") + numbered(2, "M601") + numbered(3, "G1 X20"), 1);
+  CHECK(answers(p, 1.5) == Lines{"ok", "ok", "ok"});  // M601's ok comes first (its ClearToSend)
+  Lines paused = answers(p, 5);                         // the move ends at 2 s, then the pause
+  CHECK(paused == Lines{"// action:paused"});
+  CHECK(answers(p, 11).empty());  // G1 X20 waits: not a word meanwhile
+  CHECK(answers(p, 13) == Lines{"// action:resumed", "ok"});
+}
+
+TEST_CASE("virtual Prusa: M600 and M115 U<newer> wait for the user without busy, an older version just ok",
+          "[serial][dialect]") {
+  VirtualPrinterConfig c = flavour("prusa");
+  c.user_seconds = 40;
+  VirtualPrinter p(c);
+  answers(p, 1);
+  p.receive("M600\n", 1);
+  CHECK(answers(p, 40).empty());  // no "echo:busy: processing"
+  CHECK(answers(p, 42) == Lines{"ok"});
+  p.receive("M115 U3.11.0\n", 42);
+  CHECK(answers(p, 43) == Lines{"ok"});
+  p.receive("M115 U3.99.0\n", 43);
+  CHECK(answers(p, 72).empty());  // 30 s at most (the message times out)
+  CHECK(answers(p, 74) == Lines{"ok"});
+  p.receive("M115\n", 74);
+  Lines report = answers(p, 75);
+  REQUIRE_FALSE(report.empty());
+  CHECK(report[0].rfind("FIRMWARE_NAME:Prusa-Firmware 3.13.3 based on Marlin FIRMWARE_URL:", 0) == 0);
+  CHECK(report.back() == "ok");
+  p.receive("G28\n", 75);
+  CHECK(answers(p, 79) == Lines{"echo:busy: processing", "ok"});  // its keepalive works otherwise
+}
+
+TEST_CASE("virtual RepRapFirmware: rs after a bad line, Error: lines before their ok, no busy", "[serial][dialect]") {
+  VirtualPrinter p(flavour("rrf"));
+  CHECK(answers(p, 1).empty());
+  p.receive("M110 N0\nN1 G90*99\n", 1);
+  CHECK(answers(p, 2) == Lines{"ok", "rs 1", "ok"});
+  p.receive(numbered(1, "M900 K0.05") + numbered(2, "G1 X5 F600") + numbered(3, "M115"), 2);
+  CHECK(answers(p, 3) == Lines{"Error: M900: command is not supported", "ok", "Error: G0/G1: insufficient axes homed",
+                               "ok",
+                               "FIRMWARE_NAME: RepRapFirmware for Duet 3 MB6HC (gc-virtual-printer) FIRMWARE_VERSION: "
+                               "3.5.1 ELECTRONICS: Duet 3 MB6HC v1.01 FIRMWARE_DATE: 2024-04-19",
+                               "ok"});
+  p.receive(numbered(4, "G4 S5"), 3);
+  CHECK(answers(p, 8.1) == Lines{"ok"});  // 5 s without a word
+}
+
+TEST_CASE("virtual Marlin variants: a Resend without its ok, wait when idle", "[serial][dialect]") {
+  VirtualPrinterConfig c;
+  c.resend_ok = false;
+  c.idle_wait = 1;
+  VirtualPrinter p(c);
+  CHECK(answers(p, 0.5) == Lines{"start"});
+  CHECK(answers(p, 1.01) == Lines{"wait"});
+  p.receive("M110 N0\nN2 G90*99\n", 1.5);
+  CHECK(answers(p, 2) == Lines{"ok", "Error:Line Number is not Last Line Number+1, Last Line: 0", "Resend: 1"});
+  CHECK(answers(p, 2.4).empty());  // a second after the last command
+  CHECK(answers(p, 2.6) == Lines{"wait"});
+  p.receive("G4 P3000\n", 2.6);
+  CHECK(answers(p, 4.7) == Lines{"echo:busy: processing"});  // not idle: no wait
+}
