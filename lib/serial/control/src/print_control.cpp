@@ -249,6 +249,8 @@ PauseConfig PrintControl::pause_config(const MachineState& at) const {
   Placeholders values{{"layer", std::to_string(std::max(layer_, 1))}, {"z", std::string(number_text(at.position[kZ], 3, zt))}};
   for (std::string* text : {&c.message, &c.host_message, &c.before_wait, &c.after_wait})
     *text = expand_placeholders(*text, values);
+  // A Klipper without a display refuses M117 ('// Unknown command:"M117"').
+  if (std::string_view(sender_.flavour().name) == "klipper") c.message.clear();
   return c;
 }
 

@@ -404,6 +404,7 @@ void Sender::acknowledge_front(double now, int planner_free) {
   }
   const Slot& s = slot(f.number);
   clock_.answered(s.move ? s.motion : 0, now, s.move ? s.nominal : 0);
+  if (s.move) queued_end_ = std::max(queued_end_, now) + s.motion / config_.time_scale;
   planned(s, f, now, planner_free);
   if (f.number > last_acked_.number) {
     last_acked_.number = f.number;
@@ -445,7 +446,7 @@ void Sender::on_ok(const Response& r, double now) {
   // The answer of a question taken with an earlier one's (InFlight::Answer::
   // written_off): taken for a newer question, it would acknowledge lines
   // the printer has not run yet (a firmware whose oks wait, as Klipper's
-  // while 2 s of motion are queued, draws several questions in a row).
+  // while about 1 s of motion is queued, draws several questions in a row).
   if (r.has_temperature && written_off_ > 0) {
     --written_off_;
     ++stats_.stray_oks;
@@ -813,6 +814,15 @@ double Sender::overdue_at() const {
   // by asking before --timeout.
   if (wait.unbounded && !config_.firmware->busy_keepalive) return kNever;
   double due = clock_.due(flight_[k].arrival, wait);
+  if (config_.firmware->ok_when_queued) {
+    // Klipper holds a move's ok until less than about a second of motion is
+    // queued: the motion of the moves it answered and of those ahead in
+    // flight, less that second (and, as estimates run short, the move's own).
+    const InFlight::Entry& e = flight_[k];
+    const double own = e.own == InFlight::Own::None && slot(e.number).move ? slot(e.number).motion : 0;
+    const double held = std::max(queued_end_ - kQueuedHold / config_.time_scale, e.arrival);
+    due = std::max(due, held + (kQueuedHold + wait.motion + own) / config_.time_scale + clock_.margin());
+  }
   // A question without an answer (or one that did not fit) waits twice as
   // long as the one before.
   return probes_.when(due, clock_.margin());
@@ -950,6 +960,8 @@ void Sender::emergency_stop() {
 void Sender::fail(std::string message) {
   if (state_ == SenderState::Failed) return;
   state_ = SenderState::Failed;
+  // The print ran until the last answer (the summary's time and rate).
+  if (stats_.print_start >= 0 && stats_.print_end < stats_.print_start) stats_.print_end = last_any_rx_;
   failure_ = std::move(message);
 }
 

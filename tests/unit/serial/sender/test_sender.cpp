@@ -582,3 +582,55 @@ TEST_CASE("sender: OctoPrint's virtual printer (64-byte buffer, a write waits, s
                    static_cast<unsigned long long>(o.sender.resend_requests));
   }
 }
+
+TEST_CASE("sender: ten times the file's pace, paced as fast as --no-pace, on the printer's own clock", "[serial][pace]") {
+  // Issue 41: real Marlin 2.0.7.2 with ADVANCED_OK, paced at gc-send's
+  // default flow (window) 65 s against 59 unpaced (134 against 47 on a busy
+  // host); with --flow auto, 47. Auto is the default: ADVANCED_OK's P and B
+  // where the answers carry them, the window (and pace probes) otherwise.
+  auto commands = fixture_commands("prusa_cube_0.2_mk3s_rel_zhop.gcode", 6000);
+  for (bool advanced : {true, false}) {
+    VirtualPrinterConfig pc;
+    pc.heat_rate = 1000;
+    pc.speed_factor = 10;
+    pc.advanced_ok = advanced;
+    double time[2] = {0, 0};
+    for (bool pace : {true, false}) {
+      SenderConfig sc;
+      sc.flow = FlowMode::Auto;
+      sc.pace = pace;
+      sc.read_ahead = 1;
+      INFO((advanced ? "ADVANCED_OK" : "plain Marlin") << (pace ? ", paced" : ", --no-pace"));
+      Outcome o = simulate(commands, sc, pc);
+      require_exact(o, commands);
+      time[pace ? 0 : 1] = o.printer.last_move_end - o.printer.first_move;
+      if (std::getenv("GC_FIGURES") != nullptr)
+        std::fprintf(stderr, "10x %s %s: motion %.3f s simulated, pace probes %llu, polls %llu\n",
+                     advanced ? "advanced-ok" : "plain", pace ? "paced" : "unpaced", time[pace ? 0 : 1],
+                     static_cast<unsigned long long>(o.sender.pace_probes),
+                     static_cast<unsigned long long>(o.sender.polls));
+    }
+    INFO((advanced ? "ADVANCED_OK" : "plain Marlin") << ": paced " << time[0] << " s, unpaced " << time[1] << " s");
+    CHECK(time[0] <= 1.10 * time[1]);
+  }
+}
+
+TEST_CASE("sender: Klipper holds a move's ok while a second of motion is queued: no M105 asks about it",
+          "[serial][flavour]") {
+  // Issue 41: about 1070 "overdue" M105s in one print on real Klipper, which
+  // holds an ok while about 1 s of motion is queued (gc-send asked 0.1 s
+  // after the last answer).
+  auto commands = fixture_commands("prusa_cube_0.2_mk3s_rel_zhop.gcode", 3000);
+  VirtualPrinterConfig pc;
+  pc.firmware = "klipper";
+  pc.heat_rate = 1000;
+  pc.report_link = false;
+  SenderConfig sc;
+  sc.pace = true;
+  sc.read_ahead = 1;
+  Outcome o = simulate(commands, sc, pc);
+  INFO("overdue answers asked " << o.sender.probes << ", polls " << o.sender.polls);
+  require_exact(o, commands);
+  CHECK(o.sender.probes == 0);
+  CHECK(o.sender.timeouts == 0);
+}

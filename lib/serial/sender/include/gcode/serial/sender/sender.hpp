@@ -250,6 +250,9 @@ class Sender : private TimeSink {
   static constexpr long long kHistory = 512;       // sent lines kept for resends
   static constexpr double kQuietStart = 0.05;      // quiet link after M115 before the first line
   static constexpr double kNever = 1e300;
+  // Printer seconds of motion a firmware that answers when a command is
+  // queued (Klipper) holds before an answer waits (measured: about 1 s).
+  static constexpr double kQueuedHold = 1.1;
   static constexpr std::string_view kProbe = "M105";  // asks for an answer that proves progress
   static constexpr std::string_view kPaceProbe = "G1";  // moves nothing: asks whether the planner is full
 
@@ -331,7 +334,7 @@ class Sender : private TimeSink {
   bool waiting_lines_fit(std::size_t max_line) const;
   // Pacing asked for, on a firmware whose answers can show its planner (not
   // one that answers as soon as a command is queued: Klipper's host queues
-  // about 2 s of motion whatever the sender holds back, so holding moves
+  // about 1 s of motion whatever the sender holds back, so holding moves
   // would only slow the print to the file's feed rates).
   bool pacing() const { return config_.pace && !config_.firmware->ok_when_queued; }
   bool paced(double now);
@@ -373,6 +376,7 @@ class Sender : private TimeSink {
   long long next_send_ = 1;     // the next number to transmit
   long long highest_sent_ = 0;
   long long journaled_ = 0;     // the highest number the journal has a record of
+  double queued_end_ = 0;       // when the answered moves end, by their estimates (Klipper's held oks)
   InFlight flight_;
   std::uint64_t out_total_ = 0;     // bytes ever put into out_
   std::uint64_t output_discards_ = 0;

@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "gcode/core/line.hpp"
-#include "gcode/serial/protocol.hpp"
-#include "gcode/serial/sender.hpp"
-#include "gcode/serial/virtual_printer.hpp"
+#include "gcode/serial/protocol/protocol.hpp"
+#include "gcode/serial/sender/sender.hpp"
+#include "gcode/serial/sim/virtual_printer.hpp"
 #include "serial_check.hpp"
 #include "test_support.hpp"
 
