@@ -4,7 +4,7 @@
 #  * fuzz_pipeline, the whole streaming pipeline, from a seed corpus: cuts of
 #    every fixture (the start, a layer change, the middle, the end) and edge
 #    cases (CRLF, no final newline, NUL bytes, a very long line, a lone CR,
-#    packed words, checksums);
+#    packed words, checksums), and the kept seeds of fuzz/seeds/pipeline;
 #  * fuzz_sender, the printer-reply parser and the sender's state machine,
 #    from scripted printer sessions (oks, resends in window and ADVANCED_OK
 #    flow, lost oks, busy, heating reports, junk).
@@ -41,9 +41,12 @@ else
 fi
 cmake --build "$build" -j"$(nproc)" --target fuzz_pipeline fuzz_sender >/dev/null
 
-# Seeds: rebuilt every run so they follow the fixtures.
+# Seeds: rebuilt every run so they follow the fixtures, plus the kept ones
+# (fuzz/seeds/: inputs the fuzzers once found a fault with, each a unit test too).
 rm -rf "$seeds" "$sender_seeds"
 mkdir -p "$seeds" "$work" "$sender_seeds" "$sender_work" "$build/artifacts"
+cp "$root"/fuzz/seeds/pipeline/* "$seeds"/
+if compgen -G "$root/fuzz/seeds/sender/*" >/dev/null; then cp "$root"/fuzz/seeds/sender/* "$sender_seeds"/; fi
 for f in "$root"/tests/fixtures/*.gcode; do
   name=$(basename "$f" .gcode)
   size=$(stat -c %s "$f")

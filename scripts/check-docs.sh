@@ -18,7 +18,7 @@
 # A page names what it makes up on purpose (a recipe's example files) in a
 # comment, <!-- check-docs: new fan_cap FanCap -->: spans holding one of
 # those words are not looked up.
-# Every relative link [text](page.md) points at a file. And the parts table
+# Every relative link [text](page.md) outside fenced blocks points at a file. And the parts table
 # of docs/writing-a-tool.md names every header of the library.
 set -euo pipefail
 
@@ -129,7 +129,10 @@ for page in "${pages[@]}"; do
     target=${target%%#*}
     [ -z "$target" ] && continue
     [ -e "$dir/$target" ] || fail "$page: link ($target): no such file"
-  done < <(grep -oE '\]\([^)]+\)' "$page" | sed -E 's/^\]\(//; s/\)$//' | grep -vE '^(https?:|mailto:|#)')
+  # (Not in fenced blocks, indented ones in lists too: a lambda's "[](...)"
+  # in a sketch is not a link.)
+  done < <(awk '/^ *```/ { fence = !fence; next } !fence' "$page" | grep -oE '\]\([^)]+\)' |
+    sed -E 's/^\]\(//; s/\)$//' | grep -vE '^(https?:|mailto:|#)')
 done
 
 # The parts list is complete: every header, by its stem.

@@ -2,6 +2,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "gcode/core/firmware.hpp"
+
 namespace gcode::cli {
 
 namespace {
@@ -9,9 +11,8 @@ namespace {
 void add_firmware_options(CLI::App& app, VirtualPrinterToolOptions& o) {
   serial::VirtualPrinterConfig& c = o.config;
   app.add_option("--firmware", c.firmware,
-                 "Whose replies and ways: marlin (default), klipper (its pseudo-terminal: line numbers ignored, "
-                 "'!!' errors, '// Unknown command'), prusa (M601 own pause, silent M600), rrf (RepRapFirmware "
-                 "over USB)")
+                 "Whose replies and ways (default " + c.firmware + "): " + firmware_names() +
+                     "; FIRMWARE FLAVOURS in the man page says how each differs")
       ->type_name("NAME");
   app.add_option("--user-seconds", c.user_seconds,
                  "How long the user at the printer takes to answer a wait for them (Prusa's M600, its own pause), "

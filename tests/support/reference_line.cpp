@@ -3,8 +3,6 @@
 // fuzzer): the same fields for every input.
 #include "reference_line.hpp"
 
-#include <cstring>
-
 #include "gcode/core/number.hpp"
 
 namespace gctest {
@@ -102,21 +100,67 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-// The code part (before any ';') holds only "(...)" groups and blanks.
+// Only "(...)" groups and blanks up to the end or a ';' comment. A group
+// ends at the first ')', whatever it holds (';' and '(' included); an
+// unclosed one runs to the end of the line.
 bool is_paren_comment_line(const char* p, const char* end) {
-  const char* semi = static_cast<const char*>(std::memchr(p, ';', static_cast<std::size_t>(end - p)));
-  std::string_view code(p, static_cast<std::size_t>((semi != nullptr ? semi : end) - p));
   bool inside = false;
-  for (char c : code) {
+  for (; p != end; ++p) {
     if (inside) {
-      inside = c != ')';
-    } else if (c == '(') {
+      inside = *p != ')';
+    } else if (*p == '(') {
       inside = true;
-    } else if (!is_space(c)) {
+    } else if (*p == ';') {
+      return true;
+    } else if (!is_space(*p)) {
       return false;
     }
   }
-  return !inside;
+  return true;
+}
+
+// The first ';' from p on, outside "(...)" groups when `parens` (among a
+// command's words) and anywhere when not (free text knows no parentheses);
+// `end` when none.
+const char* comment_start(const char* p, const char* end, bool parens) {
+  bool inside = false;
+  for (; p != end; ++p) {
+    if (inside) {
+      inside = *p != ')';
+    } else if (*p == ';') {
+      return p;
+    } else if (parens && *p == '(') {
+      inside = true;
+    }
+  }
+  return end;
+}
+
+// Splits what follows p into code, the checksum "*nn" at the code's end
+// and the ';' comment, into `line`; returns where the code ends.
+const char* split_code(ReferenceLine& line, const char* p, const char* end, bool parens) {
+  line.comment = {};
+  line.comment_pos = std::string_view::npos;
+  line.has_checksum = false;
+  line.checksum = 0;
+  const char* code_end = comment_start(p, end, parens);
+  if (code_end != end) {
+    line.comment = std::string_view(code_end, static_cast<std::size_t>(end - code_end));
+    line.comment_pos = static_cast<std::size_t>(code_end - line.text.data());
+  }
+  const char* q = code_end;
+  while (q != p && is_space(q[-1])) --q;
+  const char* digits_end = q;
+  while (q != p && is_digit(q[-1])) --q;
+  if (q != p && q[-1] == '*' && q != digits_end) {
+    double v = 0;
+    if (parse_number(std::string_view(q, static_cast<std::size_t>(digits_end - q)), v) && v < 256) {
+      line.has_checksum = true;
+      line.checksum = static_cast<int>(v);
+      code_end = q - 1;
+    }
+  }
+  return code_end;
 }
 
 }  // namespace
@@ -134,31 +178,9 @@ ReferenceLine reference_parse(std::string_view text) {
     line.comment_pos = static_cast<std::size_t>(p - begin);
     return line;
   }
-  // A ';' comment ends the code; find it once (M117 messages cannot hold ';').
-  const char* code_end = end;
-  if (p != end) {
-    if (const void* semi = std::memchr(p, ';', static_cast<std::size_t>(end - p)); semi != nullptr)
-      code_end = static_cast<const char*>(semi);
-  }
-  if (code_end != end) {
-    line.comment = std::string_view(code_end, static_cast<std::size_t>(end - code_end));
-    line.comment_pos = static_cast<std::size_t>(code_end - begin);
-  }
-  // Checksum "*nn" at the end of the code part.
-  {
-    const char* q = code_end;
-    while (q != p && is_space(q[-1])) --q;
-    const char* digits_end = q;
-    while (q != p && is_digit(q[-1])) --q;
-    if (q != p && q[-1] == '*' && q != digits_end) {
-      double v = 0;
-      if (parse_number(std::string_view(q, static_cast<std::size_t>(digits_end - q)), v) && v < 256) {
-        line.has_checksum = true;
-        line.checksum = static_cast<int>(v);
-        code_end = q - 1;
-      }
-    }
-  }
+  // A ';' comment ends the code (M117 messages cannot hold ';'), and a
+  // checksum comes before it.
+  const char* code_end = split_code(line, p, end, false);
   if (p == code_end) return line;
 
   // Optional line number.
@@ -233,7 +255,8 @@ ReferenceLine reference_parse(std::string_view text) {
     return line;
   }
 
-  // Words.
+  // Words: among them a ';' inside "(...)" is the group's text.
+  code_end = split_code(line, p, end, true);
   while (p != code_end) {
     char c = *p;
     if (is_space(c)) {

@@ -7,6 +7,7 @@
 
 #include "gcode/cli/send_options.hpp"
 #include "gcode/cli/tool.hpp"
+#include "gcode/serial/control/control_verbs.hpp"
 #include "gcode/serial/job/send_job.hpp"
 #include "gcode/serial/link/port.hpp"
 #include "gcode/transform/custom_gcode.hpp"
@@ -54,9 +55,9 @@ int main(int argc, char** argv) {
       "them, and pause, resume, speed up or cancel the print from a control FIFO while it runs:\n"
       "  echo pause > $XDG_RUNTIME_DIR/gc-send/ttyACM0.fifo     (finish the layer rushed, then park)\n"
       "  echo resume > $XDG_RUNTIME_DIR/gc-send/ttyACM0.fifo    (return exactly and go on)\n"
-      "Control commands: pause, pause now, resume, speed F, gcode LINE and insert FILE (while paused),\n"
-      "swap FILE (go on with the part re-sliced, by gc-relayer's rules), cancel, status.\n"
-      "Comments and blank lines are not sent; @pause, ;@pause and --pause-on codes pause the host. Every\n"
+      "Control commands, one a line:\n" +
+          gcode::serial::control_verbs_help() +
+          "Comments and blank lines are not sent; @pause, ;@pause and --pause-on codes pause the host. Every\n"
       "line is numbered and checksummed, resent on request, and the end waits for M400. Ctrl-C cancels\n"
       "(retract, lift, park, heaters off); Ctrl-C twice sends M112. The default port is the virtual printer:\n"
       "  gc-subdivide --max 0.2 part.gcode | gc-send --port /dev/ttyACM0 --baud 250000\n"

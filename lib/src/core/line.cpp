@@ -170,9 +170,9 @@ std::string_view Line::code() const {
 
 namespace {
 
-// "*nn" at p followed only by blanks up to the end or a ';' comment: the
-// checksum of a numbered line (its value, else -1).
-int checksum_at(const char* p, const char* end) {
+// "*nn" at p followed only by blanks up to the end or (`comment_may_follow`)
+// a ';' comment: the checksum of a numbered line (its value, else -1).
+int checksum_at(const char* p, const char* end, bool comment_may_follow = true) {
   const char* q = p + 1;
   int value = 0;
   const char* digits = q;
@@ -182,7 +182,7 @@ int checksum_at(const char* p, const char* end) {
   }
   if (q == digits || value > 255) return -1;
   while (q != end && is_space(*q)) ++q;
-  return q == end || *q == ';' ? value : -1;
+  return q == end || (comment_may_follow && *q == ';') ? value : -1;
 }
 
 bool read_checksum(const char* p, const char* end, Line& line) {
@@ -194,12 +194,14 @@ bool read_checksum(const char* p, const char* end, Line& line) {
 }
 
 // "(...)" comments and blanks up to the end or a ';' comment: a comment line
-// (RepRap/LinuxCNC style; Marlin reads them with PAREN_COMMENTS). They do
-// not nest: "(a (b) c)" is not one.
+// (RepRap/LinuxCNC style; Marlin reads them with PAREN_COMMENTS). Read as
+// those firmwares read them: the first ')' closes one, whatever is inside
+// ("(a;b)", "(width (3.2mm^3/s)": a ';' or '(' there is its text), and an
+// unclosed one runs to the end of the line. So "(a (b) c)" is not one.
 bool only_paren_comments(const char* p, const char* end) {
   while (p != end && *p == '(') {
     const void* close = std::memchr(p, ')', static_cast<std::size_t>(end - p));
-    if (close == nullptr) return false;
+    if (close == nullptr) return true;
     p = static_cast<const char*>(close) + 1;
     while (p != end && is_space(*p)) ++p;
   }
@@ -317,11 +319,12 @@ void Line::parse_free_text(const char* p, const char* end) {
 }
 
 // A RepRap-style inline comment "(...)" at p: skipped; the first one is kept
-// as the comment (a ';' inside it still starts the line's comment). Returns
-// where the scan goes on.
+// as the comment. It ends at the first ')' (a ';' inside is its text, as in
+// a whole line of them, see only_paren_comments); an unclosed one at the
+// line's checksum or its end. Returns where the scan goes on.
 const char* Line::skip_paren_comment(const char* p, const char* end) {
   const char* close = p;
-  while (close != end && *close != ')' && *close != ';' && !(*close == '*' && checksum_at(close, end) >= 0)) ++close;
+  while (close != end && *close != ')' && !(*close == '*' && checksum_at(close, end, false) >= 0)) ++close;
   if (close != end && *close == ')') ++close;
   if (comment.empty()) {
     comment = std::string_view(p, static_cast<std::size_t>(close - p));

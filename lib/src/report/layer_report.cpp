@@ -19,25 +19,6 @@ std::string features_text(const LayerRow& row, const LayerTracker& tracker) {
   return s.empty() ? "-" : s;
 }
 
-void append_json_string(std::string& out, std::string_view s) {
-  out += '"';
-  for (char c : s) {
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\r': out += "\\r"; break;
-      case '\t': out += "\\t"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          fmt::format_to(std::back_inserter(out), "\\u{:04x}", static_cast<unsigned>(c));
-        } else {
-          out += c;
-        }
-    }
-  }
-  out += '"';
-}
 
 void append_region(std::string& out, const LayerRow& r) {
   fmt::format_to(std::back_inserter(out), "\"first_line\": {}, \"last_line\": {}, \"byte_begin\": {}, \"byte_end\": {}",
@@ -58,6 +39,26 @@ std::string time_columns(double seconds, double cumulative) {
 }
 
 }  // namespace
+
+void append_json_string(std::string& out, std::string_view s) {
+  out += '"';
+  for (char c : s) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\r': out += "\\r"; break;
+      case '\t': out += "\\t"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          fmt::format_to(std::back_inserter(out), "\\u{:04x}", static_cast<unsigned>(c));
+        } else {
+          out += c;
+        }
+    }
+  }
+  out += '"';
+}
 
 std::string layer_table_text(const LayerTable& table, const LayerTracker& tracker, const ReportOptions& o) {
   std::string out;

@@ -4,11 +4,10 @@
 // faults; a silent printer and a fatal error end with exit status 1.
 #include <catch2/catch.hpp>
 
-#include <chrono>
-#include <functional>
 #include <set>
 #include <string>
 
+#include "control_run.hpp"
 #include "pty_run.hpp"
 #include "serial_check.hpp"
 #include "test_support.hpp"
@@ -159,10 +158,16 @@ TEST_CASE("gc-send: usage errors exit 2, --list-ports works without hardware", "
 
 namespace {
 
-double seconds_of(const std::function<PtyRun()>& f, PtyRun& out) {
-  auto t0 = std::chrono::steady_clock::now();
-  out = f();
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+// gc-send's time for `file` on the in-process printer on the simulated
+// clock (virtual:simulated-clock): the same on a loaded machine.
+double simulated_seconds(const std::string& file, const std::string& printer) {
+  auto r = run(quote(tool_path("gc-send")) + " --no-pace --port virtual:simulated-clock," + printer + " " + quote(file));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.err.find(", timeouts 0") != std::string::npos);
+  const std::size_t summary = r.err.find("summary: lines ");
+  REQUIRE(summary != std::string::npos);
+  return gctest::number_after(r.err.substr(summary), ", time ");
 }
 
 // The input lines gc-send sends, in the order the printer executed them.
@@ -189,14 +194,19 @@ TEST_CASE("gc-send: 3000 short moves at 250000 baud with faults are exact with n
   // (--no-pace: pacing sends no probe on a link that has garbled a line,
   // so a paced faulty run would measure the pacer's fallback, a move per
   // answer, against a clean run fed at the link's speed, not the recovery.)
-  PtyRun clean, faulty;
-  double t_clean = seconds_of([&] { return send_through_pty(file, "--no-pace", printer); }, clean);
-  double t_faulty = seconds_of([&] { return send_through_pty(file, "--no-pace", printer + faults); }, faulty);
+  PtyRun clean = send_through_pty(file, "--no-pace", printer);
+  PtyRun faulty = send_through_pty(file, "--no-pace", printer + faults);
   require_exact(clean, expected);
   require_exact(faulty, expected);
   INFO(faulty.result.err);
   CHECK(faulty.result.err.find("resends 0,") == std::string::npos);
   CHECK(faulty.result.err.find(", timeouts 0") != std::string::npos);
+  // The time the recovery costs, on the simulated clock (a pty's wall
+  // times move with the machine's load): the same faults in process.
+  const std::string model = "time-scale=2,instant-moves";
+  double t_clean = simulated_seconds(file, model);
+  double t_faulty = simulated_seconds(file, model + ",corrupt=0.01,drop-ok=0.002,garbage=0.002,resend=0.002,seed=3");
+  INFO("faulty " << t_faulty << " s, clean " << t_clean << " s (simulated)");
   CHECK(t_faulty < 3 * t_clean);
 }
 

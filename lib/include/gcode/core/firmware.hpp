@@ -5,11 +5,12 @@
 // answers on the serial line. Code that depends on a quirk asks the
 // description instead of knowing Marlin, so the next flavour is one more
 // file (firmware_marlin.cpp, firmware_klipper.cpp, firmware_prusa.cpp,
-// firmware_rrf.cpp) and a name in find_firmware.
+// firmware_rrf.cpp) and its line in firmwares(), the one list of them.
 //
 // Marlin 2 is the default everywhere: it is what the serial protocol and the
 // tools were written against.
 #include <span>
+#include <string>
 #include <string_view>
 
 namespace gcode {
@@ -26,6 +27,7 @@ struct CommandCode {
 
 struct FirmwareFlavor {
   std::string_view name;  // as slicers name the flavour: "marlin2"
+  std::string_view also_named;  // another name for it ("rrf"), or ""
   // How its answer to M115 begins after "FIRMWARE_NAME:" ("Marlin 2.1.2",
   // "Klipper", "Prusa-Firmware 3.13.3 based on Marlin"): the flavour a host
   // detects (find_firmware_by_report). Empty: not detected that way.
@@ -105,6 +107,15 @@ const FirmwareFlavor& klipper_firmware();
 const FirmwareFlavor& prusa_firmware();
 // RepRapFirmware 3 over USB, firmware_rrf.cpp.
 const FirmwareFlavor& rrf_firmware();
+
+// Every firmware described, the one list of them: find_firmware and
+// find_firmware_by_report walk it, the tools name its names, and the
+// simulated printer plays each (serial/virtual_dialect.hpp: a test checks
+// that it has a dialect for every one, agreeing with its description).
+std::span<const FirmwareFlavor* const> firmwares();
+// Their names for a message or --help: "marlin2, marlin, klipper, prusa or
+// reprapfirmware (rrf)".
+std::string firmware_names();
 
 // The description of a flavour as slicers name it (PrusaSlicer's
 // gcode_flavor: "marlin2", "marlin" for Marlin 1 and older, "klipper",

@@ -6,6 +6,14 @@
 // Marlin accepts: lower case, packed words ("G1X10Y5E.5"), a leading '+', a
 // missing leading zero, spaces between a letter and its number, an "N123"
 // line number and a "*71" checksum, ';' and '(...)' comments.
+//
+// Parenthesis comments are read as the firmwares that have them read them
+// (Marlin with PAREN_COMMENTS, RepRapFirmware in CNC mode, LinuxCNC): the
+// first ')' closes one and everything before it is its text, a ';' or a
+// '(' included; an unclosed one runs to the end of the line (to a
+// checksum among the words). So "(a;b)" and "(width (3.26mm^3/s)" are
+// comment lines, and "G1 X1 (a;b) Y2" moves X and Y. Free text (M117
+// messages, host commands, macros) knows no parentheses: a ';' ends it.
 #include <array>
 #include <cstdint>
 #include <string_view>

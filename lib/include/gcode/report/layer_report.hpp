@@ -40,6 +40,9 @@ class LayerTracker;
 
 // `feature_name(id)` resolves feature ids (LayerTracker::feature_name).
 std::string layer_table_text(const LayerTable& table, const LayerTracker& tracker, const ReportOptions& options);
+// `s` as a JSON string, quotes and escapes included (every JSON the reports write).
+void append_json_string(std::string& out, std::string_view s);
+
 std::string layer_table_json(const LayerTable& table, const LayerTracker& tracker, const ReportOptions& options);
 
 }  // namespace gcode

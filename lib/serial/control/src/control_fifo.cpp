@@ -6,7 +6,6 @@
 
 #include <cctype>
 #include <cerrno>
-#include <charconv>
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
@@ -24,66 +23,6 @@ namespace {
 bool is_text(unsigned char c) { return c >= 0x20 ? c != 0x7f : c == '\t' || c == '\r'; }
 
 }  // namespace
-
-std::string_view control_verb_name(ControlVerb verb) {
-  switch (verb) {
-    case ControlVerb::Pause: return "pause";
-    case ControlVerb::PauseNow: return "pause now";
-    case ControlVerb::Resume: return "resume";
-    case ControlVerb::Speed: return "speed";
-    case ControlVerb::Gcode: return "gcode";
-    case ControlVerb::Cancel: return "cancel";
-    case ControlVerb::Status: return "status";
-    case ControlVerb::Swap: return "swap";
-    case ControlVerb::Insert: return "insert";
-    case ControlVerb::Unknown: return "unknown";
-  }
-  return "unknown";
-}
-
-ControlCommand parse_control_command(std::string_view line) {
-  ControlCommand c;
-  line = trim(line);
-  std::size_t space = line.find_first_of(" \t");
-  std::string_view verb = line.substr(0, space);
-  std::string_view rest = space == std::string_view::npos ? std::string_view() : trim(line.substr(space));
-  auto unknown = [&](std::string why) {
-    c.verb = ControlVerb::Unknown;
-    c.argument = std::move(why);
-    return c;
-  };
-  struct Name {
-    const char* name;
-    ControlVerb verb;
-    bool argument;  // takes (and needs) an argument
-  };
-  static constexpr Name kNames[] = {
-      {"pause", ControlVerb::Pause, false},   {"resume", ControlVerb::Resume, false},
-      {"speed", ControlVerb::Speed, true},    {"gcode", ControlVerb::Gcode, true},
-      {"cancel", ControlVerb::Cancel, false}, {"status", ControlVerb::Status, false},
-      {"swap", ControlVerb::Swap, true},      {"insert", ControlVerb::Insert, true},
-  };
-  for (const Name& n : kNames) {
-    if (!iequals(verb, n.name)) continue;
-    if (n.verb == ControlVerb::Pause && iequals(rest, "now")) {
-      c.verb = ControlVerb::PauseNow;
-      return c;
-    }
-    if (!n.argument && !rest.empty()) return unknown(fmt::format("'{}' takes no argument: '{}'", n.name, line));
-    if (n.argument && rest.empty()) return unknown(fmt::format("'{}' needs an argument", n.name));
-    c.verb = n.verb;
-    c.argument = std::string(rest);
-    if (n.verb == ControlVerb::Speed) {
-      double f = 0;
-      auto [end, ec] = std::from_chars(rest.data(), rest.data() + rest.size(), f);
-      if (ec != std::errc() || end != rest.data() + rest.size() || !(f > 0) || f > 100)
-        return unknown(fmt::format("speed: '{}' is not a factor above 0 (1 = as sliced)", rest));
-      c.number = f;
-    }
-    return c;
-  }
-  return unknown(fmt::format("unknown command '{}'", line));
-}
 
 ControlParser::ControlParser(Handler on_command, JunkHandler on_junk)
     : on_command_(std::move(on_command)), on_junk_(std::move(on_junk)) {
@@ -105,12 +44,12 @@ void ControlParser::line_done() {
   std::string_view text = trim(line_);
   if (!text.empty()) {
     ControlCommand c = parse_control_command(text);
-    if (c.verb == ControlVerb::Unknown && reported_) {
+    if (c.verb == nullptr && reported_) {
       // Between runs of junk: more of the same, not a person's typo.
       junk_bytes_ += line_.size() + 1;
     } else {
       ++commands_;
-      if (c.verb != ControlVerb::Unknown) reported_ = false;
+      if (c.verb != nullptr) reported_ = false;
       on_command_(c);
     }
   }

@@ -577,20 +577,11 @@ bool PrintControl::swap_here(const MachineState& at, const PauseContext& context
 }
 
 void PrintControl::command(const ControlCommand& c) {
-  switch (c.verb) {
-    case ControlVerb::Pause: request_pause("pause", false); break;
-    case ControlVerb::PauseNow: request_pause("pause now", true); break;
-    case ControlVerb::Resume: resume(); break;
-    case ControlVerb::Speed: set_speed(c.number); break;
-    case ControlVerb::Gcode: user_gcode(c.argument); break;
-    case ControlVerb::Cancel: cancel(); break;
-    case ControlVerb::Status:
-      if (on_status) on_status();
-      break;
-    case ControlVerb::Insert: insert_file(c.argument); break;
-    case ControlVerb::Swap: request_swap(c.argument); break;
-    case ControlVerb::Unknown: diag_.warn(0, fmt::format("control: {}", c.argument)); break;
+  if (c.verb == nullptr) {
+    diag_.warn(0, fmt::format("control: {}", c.argument));
+    return;
   }
+  c.verb->handle(*this, c);
 }
 
 void PrintControl::action(std::string_view text) {

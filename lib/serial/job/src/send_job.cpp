@@ -15,6 +15,7 @@
 #include "gcode/core/number.hpp"
 #include "gcode/pipeline/pipeline.hpp"
 #include "gcode/report/layer_time.hpp"
+#include "gcode/serial/control/control_verbs.hpp"
 #include "gcode/serial/job/send_resume.hpp"
 #include "gcode/serial/job/send_session.hpp"
 #include "gcode/serial/journal/input_identity.hpp"
@@ -283,12 +284,11 @@ SendOutcome already_complete(const SendJob& job, const ResumeSource& source, con
   return {SendEnd::AlreadyFinished, {}};
 }
 
-// The control as the journal left it: the live speed, and the pause the
-// print stood in.
+// The control as the journal left it: what it keeps of the verbs (the
+// live speed), and the pause the print stood in.
 void back_into_control(PrintControl& control, const ResumeStart& start, bool quiet, Diagnostics& diag) {
-  double speed = 1;
-  if (!parse_number(start.point.get("speed", "1"), speed)) speed = 1;
-  control.restore_speed(speed);
+  for (const ControlVerb& verb : control_verbs())
+    if (!verb.journal_field.empty()) verb.restore(control, start.point.get(verb.journal_field));
   if (start.pause_not_begun && !quiet)
     diag.report(fmt::format("the printer took none of the pause block gc-send was sending when it stopped: printing "
                             "on after input line {} (pause again if wanted)",

@@ -16,6 +16,7 @@
 
 #include "gcode/core/line.hpp"
 #include "gcode/core/line_reader.hpp"
+#include "gcode/serial/control/control_verbs.hpp"
 #include "gcode/serial/protocol/protocol.hpp"
 
 namespace gcode::serial {
@@ -528,7 +529,8 @@ void SendSession::report(bool force) {
 void SendSession::note_live_control() {
   if (journal_ == nullptr || control_ == nullptr) return;
   LiveControl live;
-  live.speed = control_->speed();
+  for (const ControlVerb& verb : control_verbs())
+    if (!verb.journal_field.empty()) live.kept.emplace_back(verb.journal_field, verb.journal(*control_));
   live.state = control_->state_label();
   live.paused = control_->state() == PrintState::Paused;
   journal_->live(live);

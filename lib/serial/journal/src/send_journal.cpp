@@ -74,7 +74,7 @@ void SendJournal::numbered(const NumberedCommand& c) {
   written_ = *c.after;
   point_.set("hash", checkpoint_);
   point_.set("hoff", std::to_string(checkpoint_at_));
-  point_.set("speed", fmt::format("{:g}", live_.speed));
+  for (const auto& [field, value] : live_.kept) point_.set(field, value);
   point_.set("state", std::string(live_.state));
   point_.set("paused", live_.paused ? "1" : "0");
   point_.set("swap", live_.swap);

@@ -8,12 +8,32 @@
 #include <cmath>
 #include <ctime>
 #include <limits>
+#include <random>
 #include <system_error>
 #include <vector>
 
 namespace gcode::serial {
 
+bool EventLoop::simulated_ = false;
+double EventLoop::simulated_now_ = 0;
+double EventLoop::simulated_wake_ = 0;
+
+// A host's latency is no constant: exponential about its mean, from a
+// fixed seed (the same run gives the same figures).
+double EventLoop::wake_latency() {
+  static std::mt19937 rng(1);
+  if (simulated_wake_ <= 0) return 0;
+  return std::exponential_distribution<double>(1 / simulated_wake_)(rng);
+}
+
+void EventLoop::use_simulated_clock(double per_wake) {
+  simulated_now_ = now();
+  simulated_wake_ = per_wake;
+  simulated_ = true;
+}
+
 double EventLoop::now() {
+  if (simulated_) return simulated_now_;
   timespec ts{};
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec) * 1e-9;
@@ -60,7 +80,12 @@ void EventLoop::run() {
     if (fds.empty() && earliest == std::numeric_limits<double>::infinity()) return;
     timespec timeout{};
     timespec* timeout_ptr = nullptr;
-    if (earliest != std::numeric_limits<double>::infinity()) {
+    // The simulated clock does not sleep: it looks, and when nothing is
+    // ready it moves on to the earliest deadline.
+    const bool jump = simulated_ && earliest != std::numeric_limits<double>::infinity();
+    if (jump) {
+      timeout_ptr = &timeout;
+    } else if (earliest != std::numeric_limits<double>::infinity()) {
       double wait = std::max(0.0, earliest - now());
       wait = std::min(wait, 3600.0);
       timeout.tv_sec = static_cast<time_t>(wait);
@@ -72,6 +97,11 @@ void EventLoop::run() {
       if (errno == EINTR) continue;
       throw std::system_error(errno, std::generic_category(), "poll");
     }
+    // A nanosecond past it: a deadline converted from another clock (the
+    // model's simulated seconds, virtual_link.cpp) may round to just
+    // before the time it stands for, and the loop would stand still.
+    if (jump && n == 0) simulated_now_ = std::max(simulated_now_, earliest) + 1e-9;
+    if (simulated_) simulated_now_ += wake_latency();
     for (std::size_t k = 0; k < fds.size() && n > 0 && !stopped_; ++k) {
       if (fds[k].revents == 0) continue;
       Watch& w = watches_[ids[k]];

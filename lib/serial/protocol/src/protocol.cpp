@@ -272,15 +272,17 @@ std::string_view command_for_sending(std::string_view code) {
 }
 
 std::string_view command_for_sending(const Line& line, std::string& scratch) {
-  // Paren comments end at ')' (an unclosed one at the end); a ';' anywhere ends the code.
-  std::string_view text = line.text.substr(0, line.text.find(';'));
   // Free text (M117 messages, macros) is the user's, parentheses and all.
-  if (text.find('(') == std::string_view::npos || !line.argument.empty()) return command_for_sending(line.code());
+  if (line.text.find('(') == std::string_view::npos || !line.argument.empty()) return command_for_sending(line.code());
+  // Paren comments end at the first ')', a ';' inside them included (an
+  // unclosed one at the end), as Line reads them; a ';' outside ends the code.
   scratch.clear();
   bool inside = false;
-  for (char c : text) {
+  for (char c : line.text) {
     if (inside) {
       inside = c != ')';
+    } else if (c == ';') {
+      break;
     } else if (c == '(') {
       inside = true;
       if (!scratch.empty() && scratch.back() != ' ') scratch.push_back(' ');

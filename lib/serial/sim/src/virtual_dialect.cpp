@@ -4,11 +4,13 @@
 
 #include <fmt/format.h>
 
-#include "gcode/core/feature.hpp"
+#include "gcode/core/firmware.hpp"
 #include "gcode/core/line.hpp"
 #include "gcode/serial/sim/virtual_printer_options.hpp"
 
 namespace gcode::serial {
+
+const FirmwareFlavor& ReplyDialect::firmware() const { return marlin2_firmware(); }
 
 const DialectBehaviour& ReplyDialect::behaviour() const {
   static const DialectBehaviour marlin;
@@ -20,7 +22,8 @@ std::vector<std::string> ReplyDialect::restart_greeting(GreetingForm form) const
     // A USB-serial chip often hands over a NUL (line noise of the reset) first.
     case GreetingForm::NulStart: return {std::string("\0start", 6)};
     case GreetingForm::Twice: return {"start", "start"};
-    case GreetingForm::ExternalReset: return {"start", "echo: External Reset", "Marlin 2.1.2 (gc-virtual-printer)"};
+    case GreetingForm::ExternalReset:
+      return {"start", "echo: External Reset", fmt::format("Marlin {} (gc-virtual-printer)", firmware_version())};
     case GreetingForm::Start:
     case GreetingForm::CutLine: break;  // the printer puts the cut line before it
   }
@@ -84,9 +87,9 @@ std::string ReplyDialect::link_report(const VirtualPrinterConfig& config) {
 
 std::vector<std::string> ReplyDialect::firmware_report(const VirtualPrinterConfig& config) const {
   return {
-      fmt::format("FIRMWARE_NAME:Marlin 2.1.2 (gc-virtual-printer) SOURCE_CODE_URL:github.com/MarlinFirmware/Marlin "
+      fmt::format("FIRMWARE_NAME:Marlin {} (gc-virtual-printer) SOURCE_CODE_URL:github.com/MarlinFirmware/Marlin "
                   "PROTOCOL_VERSION:1.0 MACHINE_TYPE:Virtual EXTRUDER_COUNT:1{}",
-                  link_report(config)),
+                  firmware_version(), link_report(config)),
       "Cap:SERIAL_XON_XOFF:0",
       fmt::format("Cap:ADVANCED_OK:{}", config.advanced_ok ? 1 : 0),
       "Cap:EMERGENCY_PARSER:1",
@@ -103,6 +106,14 @@ namespace {
 
 class MarlinDialect final : public ReplyDialect {};
 
+// Marlin 1.1 speaks as Marlin 2 on the serial line (the same messages,
+// ADVANCED_OK, busy keepalive); only its version differs.
+class Marlin1Dialect final : public ReplyDialect {
+ public:
+  const FirmwareFlavor& firmware() const override { return marlin1_firmware(); }
+  std::string_view firmware_version() const override { return "1.1.9"; }
+};
+
 }  // namespace
 
 const ReplyDialect& marlin_dialect() {
@@ -110,10 +121,21 @@ const ReplyDialect& marlin_dialect() {
   return dialect;
 }
 
+const ReplyDialect& marlin1_dialect() {
+  static const Marlin1Dialect dialect;
+  return dialect;
+}
+
+std::span<const ReplyDialect* const> dialects() {
+  static const ReplyDialect* const kAll[] = {&marlin_dialect(), &marlin1_dialect(), &klipper_dialect(),
+                                             &prusa_dialect(), &rrf_dialect()};
+  return kAll;
+}
+
 const ReplyDialect* find_dialect(std::string_view name) {
-  if (same_name(name, "reprapfirmware")) return &rrf_dialect();
-  for (const ReplyDialect* d : {&marlin_dialect(), &klipper_dialect(), &prusa_dialect(), &rrf_dialect()})
-    if (same_name(name, d->name())) return d;
+  const FirmwareFlavor* firmware = find_firmware(name);
+  for (const ReplyDialect* d : dialects())
+    if (firmware != nullptr && &d->firmware() == firmware) return d;
   return nullptr;
 }
 

@@ -48,7 +48,7 @@ class KlipperDialect final : public ReplyDialect {
     }();
     return b;
   }
-  std::string_view name() const override { return "klipper"; }
+  const FirmwareFlavor& firmware() const override { return klipper_firmware(); }
   std::string greeting() const override { return ""; }
   std::vector<std::string> restart_greeting(GreetingForm) const override { return {"// Klipper state: Ready"}; }
   std::string ok(long long, bool, int, int) const override { return "ok"; }

@@ -4,6 +4,7 @@
 // nothing (M600, and "M115 U<version>" newer than its own).
 #include <fmt/format.h>
 
+#include "gcode/core/firmware.hpp"
 #include "gcode/serial/sim/virtual_dialect.hpp"
 #include "gcode/serial/sim/virtual_printer_options.hpp"
 
@@ -23,7 +24,7 @@ class PrusaDialect final : public ReplyDialect {
     }();
     return b;
   }
-  std::string_view name() const override { return "prusa"; }
+  const FirmwareFlavor& firmware() const override { return prusa_firmware(); }
   std::string_view firmware_version() const override { return "3.13.3"; }
   std::string ok(long long, bool, int, int) const override { return "ok"; }  // no ADVANCED_OK
 

@@ -3,6 +3,7 @@
 // answered "rs <n>" (its M998), no keepalive, moves refused before homing.
 #include <fmt/format.h>
 
+#include "gcode/core/firmware.hpp"
 #include "gcode/core/line.hpp"
 #include "gcode/serial/sim/virtual_dialect.hpp"
 #include "gcode/serial/sim/virtual_printer_options.hpp"
@@ -23,7 +24,7 @@ class RrfDialect final : public ReplyDialect {
     }();
     return b;
   }
-  std::string_view name() const override { return "rrf"; }
+  const FirmwareFlavor& firmware() const override { return rrf_firmware(); }
   std::string greeting() const override { return ""; }
   std::vector<std::string> restart_greeting(GreetingForm) const override { return {}; }
   std::string ok(long long, bool, int, int) const override { return "ok"; }

@@ -30,6 +30,7 @@ VirtualPrinterLink::VirtualPrinterLink(EventLoop& loop, const VirtualPrinterConf
       if (log_ == nullptr) throw std::runtime_error(fmt::format("cannot write {}", config.log_path));
     }
     printer_ = std::make_unique<VirtualPrinter>(config, log_);
+    if (config.simulated_clock >= 0) EventLoop::use_simulated_clock(config.simulated_clock);
     link_ = std::make_unique<VirtualLink>(loop, *printer_, model_fd_);
   } catch (...) {
     ::close(model_fd_);

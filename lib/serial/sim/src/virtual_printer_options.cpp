@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "gcode/core/firmware.hpp"
+
 namespace gcode::serial {
 
 namespace {
@@ -53,9 +55,9 @@ void parse_virtual_options(std::string_view text, VirtualPrinterConfig& c) {
       return v;
     };
     if (key == "firmware") {
-      if (std::find(kVirtualFirmwares.begin(), kVirtualFirmwares.end(), value) == kVirtualFirmwares.end())
+      if (find_firmware(value) == nullptr)
         throw std::invalid_argument(
-            fmt::format("virtual printer option firmware: '{}' is not marlin, klipper, prusa or rrf", value));
+            fmt::format("virtual printer option firmware: '{}' is not {}", value, firmware_names()));
       c.firmware = std::string(value);
     } else if (key == "user-seconds") {
       c.user_seconds = parse_value(key, value);
@@ -94,6 +96,8 @@ void parse_virtual_options(std::string_view text, VirtualPrinterConfig& c) {
       c.advanced_ok = parse_flag(key, value);
     } else if (key == "instant-moves") {
       c.instant_moves = parse_flag(key, value);
+    } else if (key == "simulated-clock") {
+      c.simulated_clock = value.empty() ? VirtualPrinterConfig::kHostLatency : parse_value(key, value);
     } else if (key == "report-link") {
       c.report_link = parse_flag(key, value);
     } else if (key == "heat-rate") {

@@ -22,6 +22,7 @@ constexpr CommandCode kRrfInstant[] = {
 constexpr FirmwareFlavor rrf() {
   FirmwareFlavor f;
   f.name = "reprapfirmware";
+  f.also_named = "rrf";
   f.reports_as = "RepRapFirmware";   // "FIRMWARE_NAME: RepRapFirmware for Duet 3 MB6HC FIRMWARE_VERSION: 3.5.1 ..."
   f.g90_g91_set_e_mode = false;
   f.m220_backup_restore = false;

@@ -17,6 +17,7 @@
 #include "gcode/core/layer_marker.hpp"
 #include "gcode/core/line.hpp"
 #include "gcode/pipeline/pipeline.hpp"
+#include "gcode/serial/control/control_verbs.hpp"
 #include "gcode/serial/control/print_control.hpp"
 #include "gcode/serial/sender/sender.hpp"
 #include "capture.hpp"
@@ -101,9 +102,10 @@ class Rig : private Stage {
     for (int guard = 0; guard < 100000 && !sent(command) && !unanswered_.empty(); ++guard) ok();
     REQUIRE(sent(command));
   }
-  void command(ControlVerb verb, std::string argument = {}, double number = 0) {
+  void command(std::string_view verb, std::string argument = {}, double number = 0) {
     ControlCommand c;
-    c.verb = verb;
+    c.verb = find_control_verb(verb);
+    REQUIRE(c.verb != nullptr);
     c.argument = std::move(argument);
     c.number = number;
     control_.command(c);
@@ -211,7 +213,7 @@ using Lines = std::vector<std::string>;
 // went out by then.
 std::size_t pause_in_layer_two(Rig& rig) {
   rig.run_until_sent("G1 X20 Y20 E4 F1200");
-  rig.command(ControlVerb::Pause);
+  rig.command("pause");
   rig.run();
   REQUIRE(rig.control().state() == PrintState::Paused);
   return rig.wire().size();
@@ -224,7 +226,7 @@ TEST_CASE("print control: a pause rushes the rest of the layer, parks at its end
           "[serial][print_control]") {
   Rig rig(kThreeLayers);
   rig.run_until_sent("G1 X20 Y20 E4 F1200");  // layer 2 under way; its next move is handed over already
-  rig.command(ControlVerb::Pause);
+  rig.command("pause");
   CHECK(rig.control().state() == PrintState::Pausing);
   CHECK(rig.control().state_label() == "pausing");
   REQUIRE(rig.control().pauses().size() == 1);
@@ -256,7 +258,7 @@ TEST_CASE("print control: resume returns to the exact position, E, modes and spe
           "[serial][print_control]") {
   Rig rig(kThreeLayers);
   const std::size_t parked = pause_in_layer_two(rig);
-  rig.command(ControlVerb::Resume);
+  rig.command("resume");
   CHECK(rig.control().state() == PrintState::Printing);
   rig.run();
   // Over the layer's last point at the safe height, down to its Z, the
@@ -275,10 +277,10 @@ TEST_CASE("print control: commands typed while paused are put back before the re
   const std::size_t parked = pause_in_layer_two(rig);
   // Relative moves, relative E, a purge, a colder nozzle.
   for (const char* typed : {"G91", "G1 X5 Y5 F3000", "M83", "G1 E10 F300", "M104 S180"})
-    rig.command(ControlVerb::Gcode, typed);
+    rig.command("gcode", typed);
   CHECK(rig.control().user_commands() == 5);
   rig.run();
-  rig.command(ControlVerb::Resume);
+  rig.command("resume");
   rig.run();
   // Absolute again (on Marlin G90 makes E absolute too: no M82), up over
   // everything held (layer 3's Z 0.6 + 2), back to the park, the E the block
@@ -295,12 +297,12 @@ TEST_CASE("print control: typed commands only while paused, and only for the pri
   Rig rig(kThreeLayers);
   rig.ok(2);
   const std::size_t before = rig.wire().size();
-  rig.command(ControlVerb::Gcode, "G1 X50");  // printing: refused
-  rig.command(ControlVerb::Pause);
+  rig.command("gcode", "G1 X50");  // printing: refused
+  rig.command("pause");
   rig.run();
-  rig.command(ControlVerb::Gcode, "@pause");   // a host command
-  rig.command(ControlVerb::Gcode, "M110 N5");  // the numbering is gc-send's
-  rig.command(ControlVerb::Gcode, "; a note");
+  rig.command("gcode", "@pause");   // a host command
+  rig.command("gcode", "M110 N5");  // the numbering is gc-send's
+  rig.command("gcode", "; a note");
   CHECK(rig.control().user_commands() == 0);
   for (std::size_t i = before; i < rig.wire().size(); ++i) {
     INFO(rig.wire()[i]);
@@ -315,7 +317,7 @@ TEST_CASE("print control: pause now takes back what is not sent yet and parks af
   rig.ok(3);
   REQUIRE(rig.in_flight() == 4);
   REQUIRE(rig.sender().pending() == 8);
-  rig.command(ControlVerb::PauseNow);
+  rig.command("pause now");
   // The 8 unsent commands wait after the block (3 lines), which parks from
   // the last command sent (G1 X10 Y10, E0).
   CHECK(rig.sender().pending() == 3);
@@ -326,7 +328,7 @@ TEST_CASE("print control: pause now takes back what is not sent yet and parks af
   CHECK(p.request == "pause now");
   CHECK(p.input_line == 8);
   CHECK(p.paused_before_layer == 0);
-  rig.command(ControlVerb::Resume);
+  rig.command("resume");
   rig.run();
   // Back to where the last sent command left the head, then every command
   // taken back, once, in order.
@@ -342,9 +344,9 @@ TEST_CASE("print control: pause now takes back what is not sent yet and parks af
 TEST_CASE("print control: pause now while pausing stops at once", "[serial][print_control]") {
   Rig rig(kThreeLayers, 8);
   rig.ok(3);
-  rig.command(ControlVerb::Pause);  // in the start code: before layer 1
+  rig.command("pause");  // in the start code: before layer 1
   CHECK(rig.control().state() == PrintState::Pausing);
-  rig.command(ControlVerb::PauseNow);
+  rig.command("pause now");
   CHECK(rig.control().state() == PrintState::Paused);
   REQUIRE(rig.control().pauses().size() == 1);
   CHECK(rig.control().pauses().back().request == "pause");
@@ -355,8 +357,8 @@ TEST_CASE("print control: pause now while pausing stops at once", "[serial][prin
 TEST_CASE("print control: a resume before the layer's end calls the pause off", "[serial][print_control]") {
   Rig rig(kThreeLayers);
   rig.run_until_sent("G1 X20 Y20 E4 F1200");
-  rig.command(ControlVerb::Pause);
-  rig.command(ControlVerb::Resume);
+  rig.command("pause");
+  rig.command("resume");
   CHECK(rig.control().state() == PrintState::Printing);
   CHECK(rig.control().pauses().empty());
   rig.run();
@@ -374,7 +376,7 @@ TEST_CASE("print control: cancel leaves out what is not sent yet and parks from 
   Rig rig(kThreeLayers, 8);
   rig.ok(3);
   REQUIRE(rig.sender().pending() == 8);
-  rig.command(ControlVerb::Cancel);
+  rig.command("cancel");
   CHECK(rig.control().cancelled());
   CHECK_FALSE(rig.control().accepts_input());
   rig.run();
@@ -389,7 +391,7 @@ TEST_CASE("print control: a cancel after the whole file was handed over still pa
   Rig rig(kThreeLayers, 64);  // every command handed over: the sender was told the input ended
   rig.ok(3);
   REQUIRE(rig.sender().pending() == commands(kThreeLayers).size() - 7);
-  rig.command(ControlVerb::Cancel);
+  rig.command("cancel");
   rig.run();
   CHECK(rig.wire() == Lines{"G28", "G90", "M82", "M104 S200", "G92 E0", "G1 Z0.2 F600", "G1 X10 Y10 F3000",
                             "G1 E-2 F2100", "G1 Z2.2 F600", "G1 X10 Y200 F3600",
@@ -402,11 +404,11 @@ TEST_CASE("print control: a pause in the end code after the whole file was hande
   const std::string text = kThreeLayers + "G1 X0 Y0 F3000\nM84\n";
   Rig rig(text, 64);
   rig.run_until_sent("M104 S0");  // the end code under way
-  rig.command(ControlVerb::PauseNow);
+  rig.command("pause now");
   rig.run();
   CHECK(rig.control().state() == PrintState::Paused);
   CHECK(rig.wire().back().find("Y200") != std::string::npos);  // parked
-  rig.command(ControlVerb::Resume);
+  rig.command("resume");
   rig.run();
   CHECK(rig.sender().state() == SenderState::Done);
   CHECK(rig.wire().back() == "M400");
@@ -416,7 +418,7 @@ TEST_CASE("print control: a pause in the end code after the whole file was hande
 TEST_CASE("print control: a cancel while paused does not park again", "[serial][print_control]") {
   Rig rig(kThreeLayers);
   const std::size_t parked = pause_in_layer_two(rig);
-  rig.command(ControlVerb::Cancel);
+  rig.command("cancel");
   rig.run();
   CHECK(tail_of(rig, parked) == Lines{"M104 S0", "M140 S0", "M107", "M84", "M400"});
 }
@@ -433,7 +435,7 @@ TEST_CASE("print control: speed changes the moves that follow, from their effect
           "[serial][print_control]") {
   Rig rig(kThreeLayers);
   rig.ok(6);  // G1 X10 Y10 sent; the next handed over
-  rig.command(ControlVerb::Speed, "", 2);
+  rig.command("speed", "", 2);
   CHECK(rig.control().speed() == 2);
   rig.run();
   // The move handed over already keeps its speed; from the next on, twice
@@ -453,7 +455,7 @@ TEST_CASE("print control: the file's own pause holds the lines after it", "[seri
   REQUIRE(rig.control().pauses().size() == 1);
   CHECK_FALSE(rig.control().pauses().back().block);
   CHECK(rig.control().host_commands() == 0);
-  rig.command(ControlVerb::Resume);
+  rig.command("resume");
   rig.run();
   // No block to undo: the file goes on where it stopped.
   CHECK(rig.wire() == Lines{"G28", "G90", "G1 Z0.2 F600", "G1 X10 Y10 F3000", "M84", "M400"});
@@ -491,7 +493,7 @@ TEST_CASE("print control: without a park position a pause retracts and lifts whe
   const std::size_t paused = pause_in_layer_two(rig);
   // Retract 2 mm, lift 2 mm above the layer; no travel, no purge.
   CHECK(tail_of(rig, paused - 2) == Lines{"G1 E5 F2100", "G1 Z2.4 F600"});
-  rig.command(ControlVerb::Resume);
+  rig.command("resume");
   rig.run();
   // Straight down to the layer's Z, the retraction pushed back, E, mode
   // and feed rate as the file had them; then layer 3.
@@ -504,7 +506,7 @@ TEST_CASE("print control: without a park position the lift stops at the printer'
   Rig rig(kThreeLayers, 1, unparked_config(1.5));
   const std::size_t paused = pause_in_layer_two(rig);
   CHECK(tail_of(rig, paused - 2) == Lines{"G1 E5 F2100", "G1 Z1.5 F600"});
-  rig.command(ControlVerb::Resume);
+  rig.command("resume");
   rig.run();
   CHECK(tail_of(rig, paused).front() == "G1 Z0.4 F600");
 }
@@ -513,8 +515,28 @@ TEST_CASE("print control: without a park position a cancel retracts and lifts, t
           "[serial][print_control]") {
   Rig rig(kThreeLayers, 8, unparked_config());
   rig.ok(3);
-  rig.command(ControlVerb::Cancel);
+  rig.command("cancel");
   rig.run();
   CHECK(rig.wire() == Lines{"G28", "G90", "M82", "M104 S200", "G92 E0", "G1 Z0.2 F600", "G1 X10 Y10 F3000",
                             "G1 E-2 F2100", "G1 Z2.2 F600", "M104 S0", "M140 S0", "M107", "M84", "M400"});
+}
+
+TEST_CASE("print control: what the journal keeps of each verb, a resumed control holds again",
+          "[serial][print_control]") {
+  Rig before(kThreeLayers);
+  before.ok(6);
+  before.command("speed", "", 2.5);
+  for (const ControlVerb& v : control_verbs()) {
+    if (v.journal_field.empty()) continue;
+    INFO(v.name);
+    Rig after(kThreeLayers);
+    v.restore(after.control(), v.journal(before.control()));
+    CHECK(v.journal(after.control()) == v.journal(before.control()));
+    // A journal without the field leaves the control as it starts.
+    Rig fresh(kThreeLayers);
+    std::string start = v.journal(fresh.control());
+    v.restore(fresh.control(), "");
+    CHECK(v.journal(fresh.control()) == start);
+  }
+  CHECK(find_control_verb("speed")->journal(before.control()) == "2.5");
 }

@@ -28,7 +28,9 @@ TEST_CASE("serial command_for_sending takes paren comments out of the code", "[s
   CHECK(sent("G1 X1 (note) Y2") == "G1 X1 Y2");
   CHECK(sent("G1 X1 (a)(b) Y2 ; c") == "G1 X1 Y2");
   CHECK(sent("G1 X1(a)Y2") == "G1 X1 Y2");
-  CHECK(sent("N5 G1 X1 (a;b) Y2*12") == "G1 X1");  // the ';' inside starts the line's comment
+  CHECK(sent("N5 G1 X1 (a;b) Y2*12") == "G1 X1 Y2");  // the ';' inside is the comment's text
+  CHECK(sent("G1 X1 ; (a) Y2") == "G1 X1");
+  CHECK(sent("(a;b)") == "");
   CHECK(sent("G1 X1 Y2 ; plain") == "G1 X1 Y2");
   CHECK(sent("(only a comment)") == "");
   CHECK(sent("G1 X1 (unclosed") == "G1 X1");

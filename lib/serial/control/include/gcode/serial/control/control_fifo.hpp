@@ -21,32 +21,9 @@
 #include <string_view>
 #include <vector>
 
+#include "gcode/serial/control/control_verbs.hpp"  // ControlCommand
+
 namespace gcode::serial {
-
-enum class ControlVerb : std::uint8_t {
-  Pause,     // finish the layer (rushed), then pause
-  PauseNow,  // stop at the next command boundary, then pause
-  Resume,
-  Speed,     // speed F: scale the following moves
-  Gcode,     // gcode LINE: send one command while paused
-  Cancel,    // safe end
-  Status,    // one status line
-  Swap,      // swap FILE
-  Insert,    // insert FILE
-  Unknown,   // anything else (reported, never fatal)
-};
-
-struct ControlCommand {
-  ControlVerb verb = ControlVerb::Unknown;
-  std::string argument;  // the rest of the line, trimmed ("" when none)
-  double number = 0;     // speed F
-};
-
-// Parses one line ("pause", "pause now", "speed 1.5", "gcode G1 Z10", ...);
-// case-insensitive verbs, blanks around ignored. A line it cannot read (a
-// missing or bad argument) is Unknown with the reason in `argument`.
-ControlCommand parse_control_command(std::string_view line);
-std::string_view control_verb_name(ControlVerb verb);
 
 // Splits the bytes written into the FIFO into command lines.
 class ControlParser {

@@ -35,6 +35,7 @@
 #include <deque>
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -42,10 +43,10 @@
 #include "gcode/core/diagnostics.hpp"
 #include "gcode/core/line_builder.hpp"
 #include "gcode/pipeline/pipeline.hpp"
-#include "gcode/serial/control/control_fifo.hpp"
+#include "gcode/serial/control/control_verbs.hpp"
 #include "gcode/serial/control/pause_log.hpp"
-#include "gcode/serial/sender/sender.hpp"
 #include "gcode/serial/control/take_back.hpp"
+#include "gcode/serial/sender/sender.hpp"
 #include "gcode/transform/join_stream.hpp"
 #include "gcode/transform/pause_context.hpp"
 #include "gcode/transform/seam.hpp"
@@ -149,6 +150,9 @@ class PrintControl {
   double paused_seconds(double now) const;
 
  private:
+  // The verbs' handlers (control_verbs.cpp) call the actions below.
+  friend std::span<const ControlVerb> control_verbs();
+
   // A line of the file held back while paused (or cancelling).
   struct Held {
     std::string command;     // as sent ("" for an in-stream pause)

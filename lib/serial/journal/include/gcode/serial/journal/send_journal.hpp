@@ -23,9 +23,11 @@
 namespace gcode::serial {
 
 // What the print control changed while the print ran (journal fields
-// speed, state, swap, swapline).
+// state, paused, swap, swapline, and one per verb the journal keeps).
 struct LiveControl {
-  double speed = 1;              // `speed F`
+  // (field, value) of each control verb the journal keeps (control_verbs.hpp:
+  // `speed F` as "speed").
+  std::vector<std::pair<std::string_view, std::string>> kept;
   std::string_view state;        // PrintControl::state_label(): printing, pausing, paused ...
   bool paused = false;           // a pause block went out: a resume goes back into the pause
   std::string swap;              // the swapped-in file ("" none)

@@ -27,6 +27,15 @@ class EventLoop {
 
   // Monotonic clock in seconds.
   static double now();
+  // From now on (for the whole process) now() is a simulated clock that
+  // moves only when the loop would sleep (it jumps to the earliest timer's
+  // deadline instead) and by `per_wake` seconds each time the loop wakes
+  // to handle something (the host's latency, as on a quiet machine). For a
+  // run whose other end is in the process (gc-send --port
+  // virtual:simulated-clock): the host's speed and load do not count, so
+  // its figures are the same on any machine. A loop with nothing ready and
+  // no timer still sleeps for real.
+  static void use_simulated_clock(double per_wake);
 
  private:
   struct Watch {
@@ -44,6 +53,10 @@ class EventLoop {
   std::deque<Watch> watches_;
   std::deque<Timer> timers_;  // a deque for the same reason: fire() may add timers
   bool stopped_ = false;
+  static bool simulated_;
+  static double simulated_now_;
+  static double simulated_wake_;
+  static double wake_latency();
 };
 
 // Makes a descriptor non-blocking (throws std::system_error on failure).

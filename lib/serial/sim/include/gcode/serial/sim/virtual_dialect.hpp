@@ -7,7 +7,13 @@
 // '// Unknown command:"X"', no line numbers), virtual_dialect_prusa.cpp
 // (Prusa-Firmware: "// action:paused", silent waits for the user),
 // virtual_dialect_rrf.cpp (RepRapFirmware over USB: "Error: ...", "rs n").
+//
+// A dialect plays one firmware of the sender's list (core/firmware.hpp,
+// firmwares()): the names --firmware and virtual:firmware= take are that
+// list's. The two stay separate (what a host assumes, what a printer does);
+// a test checks that they agree on every fact both hold.
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -16,6 +22,7 @@
 
 namespace gcode {
 class Line;
+struct FirmwareFlavor;
 }
 
 namespace gcode::serial {
@@ -63,8 +70,9 @@ class ReplyDialect {
  public:
   virtual ~ReplyDialect() = default;
   virtual const DialectBehaviour& behaviour() const;
-  // The name as --firmware and virtual:firmware= take it.
-  virtual std::string_view name() const { return "marlin"; }
+  // The firmware it plays, as the sender describes it (its name is what
+  // --firmware and virtual:firmware= take).
+  virtual const FirmwareFlavor& firmware() const;
   // Its version, as "M115 U<version>" is compared with it (Prusa).
   virtual std::string_view firmware_version() const { return "2.1.2"; }
   // The greeting at power-up ("": none, as on a pseudo-terminal).
@@ -111,13 +119,16 @@ class ReplyDialect {
   static std::string link_report(const VirtualPrinterConfig& config);
 };
 
-// Marlin 2's texts, exactly.
+// Marlin 2's texts, exactly; Marlin 1's, the same but for its version.
 const ReplyDialect& marlin_dialect();
+const ReplyDialect& marlin1_dialect();
 // Klipper's pseudo-terminal, Prusa-Firmware 3.x, RepRapFirmware 3 over USB.
 const ReplyDialect& klipper_dialect();
 const ReplyDialect& prusa_dialect();
 const ReplyDialect& rrf_dialect();
-// By name: marlin, klipper, prusa, rrf (also reprapfirmware); nullptr for another.
+// Every dialect the simulated printer has, one per firmware of firmwares().
+std::span<const ReplyDialect* const> dialects();
+// By a name of its firmware (find_firmware); nullptr for another.
 const ReplyDialect* find_dialect(std::string_view name);
 
 }  // namespace gcode::serial
