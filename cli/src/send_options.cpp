@@ -25,7 +25,7 @@ void add_send_options(Tool& tool, SendOptions& o) {
   app.add_option("-p,--port", j.port, "Serial port or pseudo-terminal path, or virtual[:key=value,...] (default: virtual)")
       ->type_name("PATH|virtual[:OPTS]")->group(link);
   app.add_option("-b,--baud", j.baud, "Baud rate, any value (default 250000; 115200, 500000 ...)")->type_name("BAUD")->group(link);
-  app.add_option("--flow", o.flow, "window (default), ping-pong, advanced-ok or auto")
+  app.add_option("--flow", o.flow, "auto (default), window, ping-pong or advanced-ok")
       ->type_name("MODE")->check(CLI::IsMember({"window", "ping-pong", "advanced-ok", "auto"}))->group(link);
   app.add_option("--queue", o.queue, "Commands the firmware queues (Marlin BUFSIZE, default 4)")->type_name("N")->group(link);
   app.add_option("--rx-buffer", o.rx_buffer, "Firmware serial receive buffer in bytes (RX_BUFFER_SIZE, default 128)")

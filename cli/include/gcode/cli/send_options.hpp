@@ -18,7 +18,7 @@ struct SendOptions {
   serial::VirtualPrinterConfig vconfig;  // --port virtual[:OPTIONS]: the simulated printer job.link makes
   FilterOptions io;         // FILE, --layer-marker, --e-mode: read as every tool reads G-code
   PauseOptions pause;
-  std::string flow = "window";
+  std::string flow = "auto";
   int queue = 4, rx_buffer = 128, max_timeouts = 5;
   int max_line = 96;
   double timeout = 10;

@@ -226,7 +226,7 @@ void PrintControl::withdraw_unsent() {
 
 // What the sender has sent can no longer be taken back.
 void PrintControl::forget_sent() {
-  ledger_.sent_through(sender_.last_submitted() - static_cast<long long>(sender_.pending()));
+  ledger_.keep_unsent(sender_.pending());
 }
 
 // Lines of its own go to the sender: what came before them cannot be taken
@@ -256,6 +256,8 @@ PauseConfig PrintControl::pause_config(const MachineState& at) const {
   Placeholders values{{"layer", std::to_string(std::max(layer_, 1))}, {"z", std::string(number_text(at.position[kZ], 3, zt))}};
   for (std::string* text : {&c.message, &c.host_message, &c.before_wait, &c.after_wait})
     *text = expand_placeholders(*text, values);
+  // A Klipper without a display refuses M117 ('// Unknown command:"M117"').
+  if (std::string_view(sender_.flavour().name) == "klipper") c.message.clear();
   return c;
 }
 
