@@ -85,7 +85,7 @@ set(CPACK_DEBIAN_TOOLS_PACKAGE_SUGGESTS "cura-engine | prusa-slicer")
 set(CPACK_DEBIAN_DEV_PACKAGE_NAME gcode-tools-dev)
 set(CPACK_DEBIAN_DEV_PACKAGE_SECTION libdevel)
 # The static library's own dependencies and the headers its headers include.
-set(CPACK_DEBIAN_DEV_PACKAGE_DEPENDS "libfmt-dev, libre2-dev, libcli11-dev, libstb-dev, libxxhash-dev, libmuparser-dev, pkg-config")
+set(CPACK_DEBIAN_DEV_PACKAGE_DEPENDS "libfmt-dev, libre2-dev, libcli11-dev, libstb-dev, libxxhash-dev, libmuparser-dev, libpolyclipping-dev, pkg-config")
 # Each package's Description field: a summary line, then the long text (no
 # CPACK_PACKAGE_DESCRIPTION_SUMMARY: CPack would put it before both).
 set(CPACK_DEBIAN_TOOLS_DESCRIPTION "Unix filters for FDM 3D-printer G-code\n${GCODE_DESCRIPTION}")

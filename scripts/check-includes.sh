@@ -4,7 +4,7 @@
 # planted fault of every kind):
 #
 #   lib/   libgcode, in rooms (docs/architecture.md, "The one-way rule"):
-#          core; pipeline; transform and report; litho and procedural
+#          core; pipeline; transform and report; litho, objects and procedural
 #   lib/serial/<wing>/   gc-send's room in wings, one library each on top of
 #          libgcode: link and protocol; sender and journal on them; control
 #          on the sender; sim (the simulated printer) on protocol and link
@@ -35,15 +35,16 @@ declare -A uses=(
   [transform]="core pipeline"
   [report]="core pipeline"
   [litho]="core pipeline report"
+  [objects]="core pipeline transform report"
   [procedural]="core"
   [serial/link]="core pipeline transform report"
   [serial/protocol]="core pipeline transform report"
   [serial/sender]="core pipeline transform report serial/protocol serial/link"
   [serial/journal]="core pipeline transform report serial/protocol serial/link"
-  [serial/control]="core pipeline transform report serial/sender serial/protocol serial/link"
+  [serial/control]="core pipeline transform report objects serial/sender serial/protocol serial/link"
   [serial/sim]="core pipeline transform report serial/protocol serial/link"
-  [serial/job]="core pipeline transform report serial/control serial/journal serial/sender serial/protocol serial/link"
-  [cli]="core pipeline transform report litho procedural serial/job serial/control serial/journal serial/sender serial/protocol serial/link serial/sim"
+  [serial/job]="core pipeline transform report objects serial/control serial/journal serial/sender serial/protocol serial/link"
+  [cli]="core pipeline transform report litho procedural objects serial/job serial/control serial/journal serial/sender serial/protocol serial/link serial/sim"
 )
 
 # Prints "ROOM PATH" for every file of the library and the front end (a

@@ -10,6 +10,7 @@ packages=(
   libstb-dev                         # gc-litho: picture decoding (stb_image)
   libxxhash-dev                      # gc-send's journal: input hash and record checks
   libmuparser-dev                    # gc-deform: the formulas (muparser)
+  libpolyclipping-dev                # gc-shape vase --mesh: polygon offsets (Clipper)
   catch2 nlohmann-json3-dev          # unit and tool tests (JSON reports read back)
   clang libclang-rt-14-dev           # libFuzzer targets (the runtime is only recommended)
   lld                                # scripts/test.sh links with it: 2 to 3 times faster than ld

@@ -79,6 +79,18 @@ const InputScan& Filter::scan() {
   return found;
 }
 
+void Filter::prepass(Stage& stage, const std::function<void(const Pipeline&)>& after) {
+  if (!pipeline_.buffered().empty()) throw std::logic_error("Filter::prepass after reading ahead");
+  input_.make_seekable();
+  e_mode();
+  Pipeline reading(markers_);
+  if (e_relative_ == 0 || e_relative_ == 1) reading.set_e_mode(e_relative_ == 1);
+  reading.add(stage);
+  reading.run(input_.fd());
+  if (after) after(reading);
+  input_.rewind();
+}
+
 LayerSelection Filter::selection(const SelectionText& text) {
   LayerSelection s;
   try {

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <vector>
 
@@ -31,6 +32,13 @@ void add_shape_group(CLI::App& app, ShapeToolOptions& o) {
   app.add_option("--sides", s.sides, "Polygon: number of sides")->check(CLI::Range(3, 1000))->capture_default_str()->group(shape);
   app.add_option("--center", o.center, "Where the axis stands on the bed (default 110,110)")->type_name("X,Y")->group(shape);
   add_mm(app, "--tolerance", s.tolerance, "Largest distance of a chord from its curve", shape);
+  const char* vase = "The vase from a mesh";
+  app.add_option("--mesh", o.mesh, "Vase: the model, a binary or ASCII STL")->type_name("MODEL.stl")->group(vase);
+  add_mm(app, "--scale", s.scale, "Vase: scale of the model's coordinates", vase);
+  app.add_option("--bottom-layers", s.bottom_layers, "Vase: filled layers under the wall")
+      ->check(CLI::Range(0, 1000))->capture_default_str()->group(vase);
+  app.add_option("--bed", o.bed, "Vase: the printable volume, WIDTHxDEPTHxHEIGHT (default 220x220x250)")
+      ->type_name("WxDxH")->group(vase);
   const char* bead = "The bead";
   add_mm(app, "--layer-height", s.layer_height, "Layer height: a rising spiral's pitch (shortened to whole turns)", bead);
   add_mm(app, "--line-width", s.line_width, "Line width (flat spirals: also the distance between turns)", bead);
@@ -50,8 +58,22 @@ void add_program_group(CLI::App& app, ShapeToolOptions& o) {
   add_speed(app, "--retract-speed", o.gcode.retract_speed, "Retraction speed", program);
 }
 
+void resolve_vase(ShapeToolOptions& o) {
+  const bool vase = o.shape.kind == procedural::ShapeKind::Vase;
+  if (vase && o.mesh.empty()) throw UsageError("vase: --mesh MODEL.stl is needed");
+  if (!vase && !o.mesh.empty()) throw UsageError(fmt::format("--mesh makes a vase, not a {}", o.kind));
+  if (o.bed.empty()) return;
+  std::vector<double> size;
+  std::string text = o.bed;
+  std::replace(text.begin(), text.end(), 'x', ',');
+  if (!parse_number_list(text, size) || size.size() != 3)
+    throw UsageError(fmt::format("--bed: expected WIDTHxDEPTHxHEIGHT in mm, not '{}'", o.bed));
+  o.shape.bed_width = size[0], o.shape.bed_depth = size[1], o.shape.bed_height = size[2];
+}
+
 void resolve(ShapeToolOptions& o) {
   procedural::parse_shape_kind(o.kind, o.shape.kind);
+  resolve_vase(o);
   std::vector<double> c;
   if (!o.center.empty() && (!parse_number_list(o.center, c) || c.size() != 2))
     throw UsageError(fmt::format("--center: expected X,Y, not '{}'", o.center));
@@ -67,8 +89,8 @@ void resolve(ShapeToolOptions& o) {
 
 void add_shape_options(Tool& tool, ShapeToolOptions& o) {
   CLI::App& app = tool.app();
-  app.add_option("SHAPE", o.kind, "circle, spiral (flat), helix, cylinder (bottom + helix wall), polygon, cone")
-      ->required()->check(CLI::IsMember({"circle", "spiral", "helix", "cylinder", "polygon", "cone"}));
+  app.add_option("SHAPE", o.kind, "circle, spiral (flat), helix, cylinder (bottom + helix wall), polygon, cone, vase (--mesh)")
+      ->required()->check(CLI::IsMember({"circle", "spiral", "helix", "cylinder", "polygon", "cone", "vase"}));
   tool.add_filter_options(o.io, kOutput | kVerbosity);
   add_shape_group(app, o);
   add_program_group(app, o);

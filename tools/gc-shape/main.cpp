@@ -11,7 +11,9 @@
 #include "gcode/cli/shape_options.hpp"
 #include "gcode/cli/tool.hpp"
 #include "gcode/core/output_buffer.hpp"
+#include "gcode/procedural/mesh_vase.hpp"
 #include "gcode/procedural/shape_gcode.hpp"
+#include "gcode/procedural/stl_reader.hpp"
 
 namespace {
 
@@ -25,11 +27,16 @@ std::string text_of(const std::string& path, const char* option) {
   return {std::istreambuf_iterator<char>(in), {}};
 }
 
+procedural::ShapePath path_of(const Options& o) {
+  if (o.mesh.empty()) return procedural::ShapePath(o.shape);
+  return procedural::mesh_vase(procedural::read_stl(text_of(o.mesh, "--mesh"), o.mesh), o.shape, o.mesh);
+}
+
 int write(Options& o, gcode::cli::Tool& tool) {
   gcode::Diagnostics diag = tool.diagnostics(o.io);
   if (!o.start.empty()) o.gcode.start_code = text_of(o.gcode.start_name = o.start, "--start");
   if (!o.end.empty()) o.gcode.end_code = text_of(o.gcode.end_name = o.end, "--end");
-  const procedural::ShapePath path(o.shape);
+  const procedural::ShapePath path = path_of(o);
   gcode::OutputFile file(o.io.output, "");
   file.widen_pipe();  // gc-shape | gc-deform
   std::optional<gcode::OutputBuffer> out(file.fd());
@@ -51,7 +58,8 @@ int main(int argc, char** argv) {
       "gc-shape: primitives printed without a slicer, each one seamless path; a rising spiral has no seam and no\n"
       "layer change (one turn = one layer). Diameters are the path's centre line.\n"
       "  gc-shape helix --diameter 60 --height 80 > cup.gcode\n"
-      "  gc-shape cylinder --diameter 40 --height 30 | gc-deform --cylinder 'r + 1.05*z' theta '0.3*z' > dish.gcode");
+      "  gc-shape cylinder --diameter 40 --height 30 | gc-deform --cylinder 'r + 1.05*z' theta '0.3*z' > dish.gcode\n"
+      "  gc-shape vase --mesh shade.stl --bottom-layers 3 > shade.gcode");
   gcode::cli::add_shape_options(tool, o);
   return tool.run(argc, argv, [&] { return write(o, tool); });
 }

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace gcode::procedural {
 
@@ -16,6 +17,8 @@ constexpr int kMaxSides = 1000;
 
 bool rising(ShapeKind k) { return k != ShapeKind::Circle && k != ShapeKind::Spiral; }
 
+bool from_mesh(ShapeKind k) { return k == ShapeKind::Vase; }
+
 void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);
 }
@@ -26,7 +29,7 @@ bool positive(double v) { return std::isfinite(v) && v > 0; }
 
 bool parse_shape_kind(std::string_view name, ShapeKind& out) {
   for (ShapeKind k : {ShapeKind::Circle, ShapeKind::Spiral, ShapeKind::Helix, ShapeKind::Cylinder, ShapeKind::Polygon,
-                      ShapeKind::Cone})
+                      ShapeKind::Cone, ShapeKind::Vase})
     if (shape_kind_name(k) == name) {
       out = k;
       return true;
@@ -41,18 +44,25 @@ std::string_view shape_kind_name(ShapeKind kind) {
     case ShapeKind::Helix: return "helix";
     case ShapeKind::Cylinder: return "cylinder";
     case ShapeKind::Polygon: return "polygon";
-    case ShapeKind::Cone: break;
+    case ShapeKind::Cone: return "cone";
+    case ShapeKind::Vase: break;
   }
-  return "cone";
+  return "vase";
 }
 
 void ShapeOptions::validate() const {
-  require(positive(diameter), "--diameter must be above 0");
+  require(from_mesh(kind) || positive(diameter), "--diameter must be above 0");
   require(positive(layer_height), "--layer-height must be above 0");
   require(positive(line_width), "--line-width must be above 0");
   require(std::isfinite(center_x) && std::isfinite(center_y), "--center must be finite");
   require(positive(tolerance) && tolerance >= 2 * rounding,
           "--tolerance must be at least 0.002 mm (twice what 3 decimals of X and Y may round)");
+  if (from_mesh(kind)) {
+    require(positive(scale), "--scale must be above 0");
+    require(bottom_layers >= 0 && bottom_layers <= 1000, "--bottom-layers must be 0..1000");
+    require(positive(bed_width) && positive(bed_depth) && positive(bed_height), "--bed must be above 0");
+    return;
+  }
   if (rising(kind))
     require(positive(height) && height >= (kind == ShapeKind::Cylinder ? 2 : 1) * layer_height,
             kind == ShapeKind::Cylinder ? "--height must be at least two layer heights (the bottom and one turn)"
@@ -67,8 +77,16 @@ void ShapeOptions::validate() const {
   }
 }
 
+ShapePath::ShapePath(const ShapeOptions& options, LaidPath laid) : options_(options), laid_(std::move(laid)) {
+  options_.validate();
+  bottom_layers_ = laid_.bottom_layers;
+  turns_ = laid_.turns;
+  pitch_ = laid_.pitch;
+}
+
 ShapePath::ShapePath(const ShapeOptions& options) : options_(options) {
   options_.validate();
+  require(!from_mesh(options_.kind), "a vase is built from a mesh (--mesh MODEL.stl)");
   const ShapeOptions& o = options_;
   const double h = o.layer_height;
   spiral_inner_ = o.inner_diameter > 0 ? o.inner_diameter / 2 : 2 * o.line_width;
@@ -87,14 +105,24 @@ ShapePath::ShapePath(const ShapeOptions& options) : options_(options) {
   pitch_ = wall / turns_;
 }
 
-double ShapePath::top() const { return rising(options_.kind) ? wall_base_ + pitch_ * turns_ : options_.layer_height; }
+double ShapePath::top() const {
+  if (from_mesh(options_.kind)) return laid_.top;
+  return rising(options_.kind) ? wall_base_ + pitch_ * turns_ : options_.layer_height;
+}
 
 double ShapePath::max_radius() const {
   const double d = options_.kind == ShapeKind::Cone ? std::max(options_.diameter, options_.top_diameter) : options_.diameter;
   return d / 2;
 }
 
+Box2 ShapePath::box() const {
+  if (from_mesh(options_.kind)) return laid_.box;
+  const double r = max_radius();
+  return {options_.center_x - r, options_.center_y - r, options_.center_x + r, options_.center_y + r};
+}
+
 PathPoint ShapePath::start() const {
+  if (from_mesh(options_.kind)) return laid_.start;
   const ShapeOptions& o = options_;
   const double r = o.kind == ShapeKind::Cylinder ? o.line_width / 2 : o.diameter / 2;
   // A flat layer (a cylinder's bottom too) lays its full bead from the start; a rising spiral ramps up from 0.
@@ -115,6 +143,10 @@ double ShapePath::wall_radius(double phi) const {
 }
 
 void ShapePath::layer(int i, ShapeLayer& out) const {
+  if (from_mesh(options_.kind)) {
+    out = laid_.layers[static_cast<std::size_t>(i)];
+    return;
+  }
   out.points.clear();
   out.bottom = false;
   out.start_bead = i == bottom_layers_ && options_.kind == ShapeKind::Cylinder ? 0 : -1;

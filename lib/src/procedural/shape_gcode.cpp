@@ -88,6 +88,23 @@ class PathWriter {
     line(b_.view());
   }
 
+  // A short travel inside a flat fill: straight there, no lift, no retraction.
+  void hop(const PathPoint& to) {
+    b_.start("G0");
+    feed(options_.travel_speed);
+    b_.word('X', to.x, kXYZ).word('Y', to.y, kXYZ);
+    if (to_scaled(to.z, kXYZ) != written_[2]) b_.word('Z', to.z, kXYZ);
+    line(b_.view());
+    pending_ = 0;
+    set_position(to);
+    bead_written_ = to.bead;
+  }
+
+  void go(const PathPoint& to) {
+    if (to.travel) hop(to);
+    else extrude_to(to);
+  }
+
   void travel(const PathPoint& to, double lift_z) {
     auto go = [&](std::string_view words) {
       b_.start("G0");
@@ -138,7 +155,7 @@ ShapeGcodeStats dry_run(const ShapePath& path, const ShapeGcodeOptions& options)
   for (int i = 0; i < path.layer_count(); ++i) {
     path.layer(i, layer);
     w.restart_bead(layer.start_bead);
-    for (const PathPoint& p : layer.points) w.extrude_to(p);
+    for (const PathPoint& p : layer.points) w.go(p);
     w.text().clear();
   }
   return {path.layer_count(), w.filament(), w.length(), w.moves()};
@@ -147,15 +164,15 @@ ShapeGcodeStats dry_run(const ShapePath& path, const ShapeGcodeOptions& options)
 void write_header(const ShapePath& path, const ShapeGcodeOptions& options, const ShapeGcodeStats& totals,
                   PathWriter& w) {
   const ShapeOptions& o = path.options();
-  const double r = path.max_radius();
+  const Box2 box = path.box();
   w.line(";FLAVOR:Marlin");
   w.line(fmt::format(";Filament used: {}m", number_string(totals.filament / 1000, 5)));
   w.line(fmt::format(";Layer height: {}", number_string(o.layer_height, 3)));
-  w.line(fmt::format(";MINX:{}", number_string(o.center_x - r, 3)));
-  w.line(fmt::format(";MINY:{}", number_string(o.center_y - r, 3)));
+  w.line(fmt::format(";MINX:{}", number_string(box.min_x, 3)));
+  w.line(fmt::format(";MINY:{}", number_string(box.min_y, 3)));
   w.line(fmt::format(";MINZ:{}", number_string(path.start().z, 3)));
-  w.line(fmt::format(";MAXX:{}", number_string(o.center_x + r, 3)));
-  w.line(fmt::format(";MAXY:{}", number_string(o.center_y + r, 3)));
+  w.line(fmt::format(";MAXX:{}", number_string(box.max_x, 3)));
+  w.line(fmt::format(";MAXY:{}", number_string(box.max_y, 3)));
   w.line(fmt::format(";MAXZ:{}", number_string(path.top(), 3)));
   w.line("");
   w.line(fmt::format(";Generated with gc-shape {}: a {} printed as one seamless path, without a slicer", kVersion,
@@ -167,12 +184,12 @@ void write_header(const ShapePath& path, const ShapeGcodeOptions& options, const
 void write_start(const ShapePath& path, const ShapeGcodeOptions& options, PathWriter& w) {
   const ShapeOptions& o = path.options();
   const PathPoint start = path.start();
-  const double r = path.max_radius();
+  const Box2 box = path.box();
   double lift = start.z + kLift;
   if (options.start_code.empty()) {
     MarlinStart s{.nozzle_temp = options.nozzle_temp, .bed_temp = options.bed_temp,
-                  .travel_speed = options.travel_speed, .purge_x0 = o.center_x - r,
-                  .purge_x1 = std::max(o.center_x + r, o.center_x - r + 20), .purge_y = o.center_y - r - 5,
+                  .travel_speed = options.travel_speed, .purge_x0 = box.min_x,
+                  .purge_x1 = std::max(box.max_x, box.min_x + 20), .purge_y = box.min_y - 5,
                   .purge_z = o.layer_height, .e_decimals = kE};
     s.purge_filament = o.line_width * o.layer_height * (s.purge_x1 - s.purge_x0) * 1.2 / filament_area(options);
     w.text() += marlin_start_code(s);
@@ -210,7 +227,8 @@ std::vector<std::string> shape_parameters(const ShapePath& path, const ShapeGcod
   std::vector<std::string> p;
   auto add = [&](std::string_view name, const std::string& value) { p.push_back(fmt::format("{} = {}", name, value)); };
   add("shape", std::string(shape_kind_name(o.kind)));
-  add("diameter", number_string(o.diameter, 3) + " mm (the path's centre line)");
+  for (const std::string& line : path.laid().parameters) p.push_back(line);
+  if (o.kind != ShapeKind::Vase) add("diameter", number_string(o.diameter, 3) + " mm (the path's centre line)");
   if (o.kind == ShapeKind::Cone) add("top_diameter", number_string(o.top_diameter, 3) + " mm");
   if (o.kind == ShapeKind::Spiral)
     add("inner_diameter", number_string(2 * path.start().x - 2 * o.center_x, 3) + " mm outer, " +
@@ -258,7 +276,7 @@ ShapeGcodeStats write_shape_gcode(const ShapePath& path, const ShapeGcodeOptions
     if (i == 0 || layer.bottom != bottom) w.line(layer.bottom ? ";TYPE:SKIN" : ";TYPE:WALL-OUTER");
     bottom = layer.bottom;
     w.restart_bead(layer.start_bead);
-    for (const PathPoint& p : layer.points) w.extrude_to(p);
+    for (const PathPoint& p : layer.points) w.go(p);
     emit();
   }
   if (options.end_code.empty()) {

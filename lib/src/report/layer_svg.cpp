@@ -29,19 +29,6 @@ std::string lower(std::string_view s) {
   return r;
 }
 
-void append_xml_text(std::string& out, std::string_view s) {
-  for (char c : s) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default:
-        // Control characters are not allowed in XML 1.0.
-        if (static_cast<unsigned char>(c) >= 0x20 || c == '\t') out += c;
-    }
-  }
-}
 
 // Shortest fixed decimal, two places: 0.01 mm is finer than any nozzle.
 void num(std::string& out, double v, int decimals = 2) {
@@ -232,6 +219,20 @@ void svg_open(std::string& out, double w, double h) {
 }
 
 }  // namespace
+
+void append_xml_text(std::string& out, std::string_view s) {
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default:
+        // Control characters are not allowed in XML 1.0.
+        if (static_cast<unsigned char>(c) >= 0x20 || c == '\t') out += c;
+    }
+  }
+}
 
 std::string feature_color(std::string_view name) {
   std::string n = lower(name);

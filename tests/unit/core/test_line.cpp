@@ -88,7 +88,7 @@ TEST_CASE("host commands, macros, comments", "[line]") {
   CHECK(Line::parse("   \t").is_blank());
 }
 
-TEST_CASE("paren comments: the first ')' closes one, a ';' or '(' inside is its text", "[line]") {
+TEST_CASE("paren comments: the first ')' closes one, a semicolon or '(' inside is its text", "[line]") {
   // As Marlin (PAREN_COMMENTS), RepRapFirmware (CNC mode) and LinuxCNC
   // read them; the pipeline fuzzer found the first two lines, where the
   // parser and the reference disagreed.

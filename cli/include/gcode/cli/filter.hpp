@@ -49,6 +49,11 @@ class Filter {
   // count_layers does, and goes back to its start. Read once: later calls
   // give the same scan.
   const InputScan& scan();
+  // Reads the whole input once through `stage` (a pipeline of its own,
+  // the same markers and E mode), then goes back to its start: for a tool
+  // that must know the whole file (its objects) before the real run;
+  // `after` sees that pipeline once it ran (its tracker: features, layers).
+  void prepass(Stage& stage, const std::function<void(const Pipeline&)>& after = {});
   // Parses a selection and, when a range counts from the end, counts the
   // layers first; with --types, reads the file's features first and throws
   // UsageError for a name it does not have (before any output). Throws

@@ -1,7 +1,7 @@
 #pragma once
 // gc-shape's options and what they map to (procedural/shape.hpp's
 // ShapeOptions, procedural/shape_gcode.hpp's ShapeGcodeOptions): the shape
-// and its size, the bead, and the program around it (temperatures, fan,
+// and its size (a vase: its mesh), the bead, and the program around it (temperatures, fan,
 // start and end code, travel and retraction).
 #include <string>
 
@@ -15,6 +15,7 @@ struct ShapeToolOptions {
   procedural::ShapeOptions shape;
   procedural::ShapeGcodeOptions gcode;
   std::string kind, center, start, end;  // SHAPE, --center X,Y, --start FILE, --end FILE
+  std::string mesh, bed;                 // --mesh MODEL.stl, --bed WxDxH
 };
 
 // Every option, and the check that settles the kind and the centre

@@ -18,7 +18,9 @@
 //   polygon   a helix through the corners of a regular polygon (`sides`,
 //             corners on the diameter, the first on +X), straight edges;
 //   cylinder  a flat spiral from the centre outward to the diameter (the
-//             bottom, one layer), then the helix wall from where it ends.
+//             bottom, one layer), then the helix wall from where it ends;
+//   vase      a mesh's outer wall as one rising spiral on a filled bottom
+//             (mesh_vase.hpp builds its layers: a LaidPath).
 // The first turn of every rising spiral ramps up from what it stands on
 // (the bed, the cylinder's bottom): its bead grows from nothing to the full
 // layer height, so the spiral starts on the bed and every later point lies
@@ -28,14 +30,17 @@
 // radius r deviates r (1 - cos(a/2)) from its arc, so each turn gets the
 // fewest equal steps that keep that within the tolerance (at the turn's
 // largest radius), less the rounding of written coordinates.
+#include <string>
 #include <string_view>
 #include <vector>
 
+#include "gcode/core/geometry.hpp"
+
 namespace gcode::procedural {
 
-enum class ShapeKind { Circle, Spiral, Helix, Cylinder, Polygon, Cone };
+enum class ShapeKind { Circle, Spiral, Helix, Cylinder, Polygon, Cone, Vase };
 
-// "circle", "spiral", "helix", "cylinder", "polygon", "cone"; false for anything else.
+// "circle", "spiral", "helix", "cylinder", "polygon", "cone", "vase"; false for anything else.
 bool parse_shape_kind(std::string_view name, ShapeKind& out);
 std::string_view shape_kind_name(ShapeKind kind);
 
@@ -52,6 +57,10 @@ struct ShapeOptions {
   double center_y = 110;
   double tolerance = 0.01;     // mm, chord error along curves
   double rounding = 0.0008;    // mm, what writing the coordinates may add (3 decimals: 0.0005 x sqrt 2)
+  // A vase from a mesh:
+  double scale = 1;            // of the model's coordinates
+  int bottom_layers = 3;       // filled layers under the wall
+  double bed_width = 220, bed_depth = 220, bed_height = 250;  // mm, what the model must fit in
   // Throws std::invalid_argument naming the option that makes no sense.
   void validate() const;
 };
@@ -59,6 +68,7 @@ struct ShapeOptions {
 struct PathPoint {
   double x = 0, y = 0, z = 0;
   double bead = 0;  // bead height laid on the way to this point (at this point)
+  bool travel = false;  // reached by a travel, not a bead (between a flat fill's pieces and layers)
 };
 
 // One layer of the path: a rising spiral's turn, or a flat part.
@@ -70,9 +80,23 @@ struct ShapeLayer {
   double start_bead = -1;
 };
 
+// A path built elsewhere (a vase from a mesh): its layers and what the
+// header says about it.
+struct LaidPath {
+  std::vector<ShapeLayer> layers;
+  PathPoint start;
+  int bottom_layers = 0;
+  int turns = 0;
+  double pitch = 0;
+  double top = 0;
+  Box2 box;
+  std::vector<std::string> parameters;  // "name = value" lines for the header
+};
+
 class ShapePath {
  public:
   explicit ShapePath(const ShapeOptions& options);  // validates
+  ShapePath(const ShapeOptions& options, LaidPath laid);
 
   const ShapeOptions& options() const { return options_; }
   int layer_count() const { return bottom_layers_ + turns_; }
@@ -84,6 +108,8 @@ class ShapePath {
   void layer(int i, ShapeLayer& out) const;
   // The XY extent of the path (radius about the centre).
   double max_radius() const;
+  Box2 box() const;                                // the print's XY box
+  const LaidPath& laid() const { return laid_; }   // a built path's (empty for a primitive)
 
  private:
   void flat_spiral(double r_from, double r_to, double z, ShapeLayer& out) const;
@@ -98,6 +124,7 @@ class ShapePath {
   double wall_base_ = 0;      // Z the wall stands on
   double wall_angle_ = 0;     // angle where the wall starts
   double spiral_inner_ = 0;   // flat spiral: inner radius
+  LaidPath laid_;
 };
 
 }  // namespace gcode::procedural

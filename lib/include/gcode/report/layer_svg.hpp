@@ -98,4 +98,7 @@ void write_layer_pictures(std::vector<LayerDrawing>& drawings, const SvgOptions&
 // A fixed colour per feature name (slicers' names, case-insensitive), as "#rrggbb".
 std::string feature_color(std::string_view name);
 
+// `s` as XML text (&, <, >, " escaped; control characters left out).
+void append_xml_text(std::string& out, std::string_view s);
+
 }  // namespace gcode

@@ -12,7 +12,6 @@
 #include "gcode/core/text.hpp"
 #include "gcode/transform/custom_gcode.hpp"
 #include "gcode/transform/transition.hpp"
-#include "gcode/serial/link/event_loop.hpp"
 #include "gcode/serial/protocol/protocol.hpp"
 
 namespace gcode::serial {
@@ -74,7 +73,8 @@ std::string_view PrintControl::state_label() const {
   return print_state_name(state_);
 }
 
-void PrintControl::line(const TrackedLine& t) {
+void PrintControl::line(const TrackedLine& t, double now) {
+  now_ = now;
   const Line& line = t.line;
   region_ = t.region;
   if (t.layer > 0) layer_ = t.layer;
@@ -129,7 +129,8 @@ void PrintControl::process(std::string_view command, std::uint64_t source, int l
   if (extruding) sent_extrusion_ = true;
 }
 
-void PrintControl::layer(const LayerInfo& info, const MachineState& before) {
+void PrintControl::layer(const LayerInfo& info, const MachineState& before, double now) {
+  now_ = now;
   // A swap asked for goes first, unless a pause does (the swap then comes
   // at its resume).
   if (swap_ && state_ == PrintState::Printing && !holding_ && swap_here(before, printed_, info.index - 1)) return;
@@ -141,14 +142,16 @@ void PrintControl::layer(const LayerInfo& info, const MachineState& before) {
   finish_pausing(before);
 }
 
-void PrintControl::end_code(const MachineState& before) {
+void PrintControl::end_code(const MachineState& before, double now) {
+  now_ = now;
   // The file is done but for its end code: the other file goes on on top.
   if (swap_ && state_ == PrintState::Printing && !holding_ && swap_here(before, printed_, layer_)) return;
   region_ = Region::EndCode;
   if (state_ == PrintState::Pausing) finish_pausing(before);
 }
 
-void PrintControl::end_of_input() {
+void PrintControl::end_of_input(double now) {
+  now_ = now;
   input_ended_ = true;
   // A file cut short (no next layer, no end code): the pause goes at its end.
   if (state_ == PrintState::Pausing) finish_pausing(handed_);
@@ -161,7 +164,7 @@ void PrintControl::finish_pausing(const MachineState& at) {
 }
 
 PauseRecord& PrintControl::start_record(std::string request) {
-  PauseRecord& r = pauses_.start(std::move(request), layer_, EventLoop::now(), probe_.now ? probe_.now() : -1);
+  PauseRecord& r = pauses_.start(std::move(request), layer_, now_, probe_.now ? probe_.now() : -1);
   if (probe_.now) diag_.info(fmt::format("{}: asked at printer time {:.6f} s", r.request, r.printer_request));
   return r;
 }
@@ -377,7 +380,7 @@ void PrintControl::resume() {
   if (stop_.own_block) lines.insert(lines.end(), stop_.resume_lines.begin(), stop_.resume_lines.end());
   submit_lines(lines, layer_);
   stop_.resume_lines.clear();
-  pauses_.resumed(EventLoop::now());
+  pauses_.resumed(now_);
   state_ = PrintState::Printing;
   holding_ = false;
   if (swap_ && at_layer_start()) {
@@ -446,6 +449,38 @@ std::vector<std::string> PrintControl::safe_end(const MachineState& at, bool par
   }
   for (std::string& l : split_lines(config_.cancel_gcode)) lines.push_back(std::move(l));
   return lines;
+}
+
+std::size_t PrintControl::resume_into_pause(const MachineState& at, const MachineState& parked, double retracted,
+                                            double top_z, std::size_t taken, double now) {
+  now_ = now;
+  PauseRecord& r = start_record("the journal's pause");
+  r.input_line = last_source_;
+  r.block_number = sender_.last_submitted() + 1;
+  r.block = true;
+  handed_ = at;
+  PauseReentry reentry(at, retracted, top_z, &precision_, parked, taken);
+  bool rest = false;
+  try {
+    PauseConfig c = pause_config(at);
+    config_.park.place_or_lift(printed_, precision_, c);
+    rest = reentry.finish_block(c);
+  } catch (const std::exception& e) {
+    reentry.cannot_make(e.what());
+  }
+  if (!reentry.warning().empty()) diag_.warn(0, "the journal's pause: " + reentry.warning());
+  if (!rest) reentry.park_here(pause_config(at));
+  stop_at(at, reentry.resume_from(), true);
+  stop_.resume_lines = std::move(reentry.resume_lines());
+  if (!rest) {
+    stop_.printer = parked;
+    diag_.info("the print was paused: waiting for resume");
+    return 0;
+  }
+  submit_lines(reentry.rest(), layer_);
+  diag_.info(fmt::format("the print was pausing: the rest of the pause block ({} of {} lines) sent; waiting for resume",
+                         reentry.rest().size(), reentry.block_lines()));
+  return reentry.rest().size();
 }
 
 double PrintControl::paused_seconds(double now) const {
@@ -574,7 +609,8 @@ bool PrintControl::swap_here(const MachineState& at, const PauseContext& context
   return true;
 }
 
-void PrintControl::command(const ControlCommand& c) {
+void PrintControl::command(const ControlCommand& c, double now) {
+  now_ = now;
   if (c.verb == nullptr) {
     diag_.warn(0, fmt::format("control: {}", c.argument));
     return;
@@ -582,7 +618,8 @@ void PrintControl::command(const ControlCommand& c) {
   c.verb->handle(*this, c);
 }
 
-void PrintControl::action(std::string_view text) {
+void PrintControl::action(std::string_view text, double now) {
+  now_ = now;
   auto starts = [&](std::string_view word) { return text.rfind(word, 0) == 0; };
   if (starts("pause") && !starts("paused")) {
     request_pause("//action:pause", false);

@@ -27,6 +27,22 @@ double estimated_remaining(double estimated_total, double estimated_done, double
   return std::max(0.0, estimated_total - estimated_done) * pace;
 }
 
+void PrintEta::layer_one(double now, double estimated_done, double paused) {
+  if (pacing()) return;
+  origin_wall_ = now;
+  origin_estimate_ = estimated_done;
+  origin_paused_ = paused;
+}
+
+double PrintEta::remaining(double now, double estimated_done, double paused, double percent, double elapsed) const {
+  double eta = -1;
+  if (pacing())
+    eta = estimated_remaining(estimate_ - origin_estimate_, estimated_done - origin_estimate_,
+                              now - origin_wall_ - (paused - origin_paused_));
+  if (eta < 0 && percent > 1 && elapsed > 0) eta = elapsed * (100 - percent) / percent;
+  return eta;
+}
+
 std::string progress_line(const ProgressSnapshot& s) {
   std::string line = fmt::format("{:<10}", s.state);
   if (s.layer > 0) {

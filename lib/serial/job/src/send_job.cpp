@@ -295,7 +295,7 @@ void back_into_control(PrintControl& control, const ResumeStart& start, bool qui
                             start.plan.input_line));
   if (!start.paused) return;
   std::size_t rest = control.resume_into_pause(start.paused->at, start.plan.state, start.paused->track.retracted,
-                                               start.paused->track.top_z, start.paused->taken);
+                                               start.paused->track.top_z, start.paused->taken, EventLoop::now());
   if (quiet) return;
   if (rest > 0)
     diag.report(fmt::format("the last run stopped inside the pause block: its {} lines the printer had not taken go "

@@ -25,9 +25,6 @@ namespace {
 
 constexpr std::size_t kReadSize = 65536;   // bytes read from the input at once
 constexpr std::size_t kLowWater = 16384;   // read more when less is buffered
-// A checkpoint of the input's hash in the journal at least this often: a
-// resume of a re-run pipeline checks the bytes up to one before its line.
-constexpr std::uint64_t kCheckpointBytes = 64 * 1024;
 
 }  // namespace
 
@@ -50,10 +47,10 @@ struct SendSession::Segment : Stage {
     LayerInfo i = info;
     i.index += layer_offset;
     i.first_line += line_offset;
-    session.control_->layer(i, before);
+    session.control_->layer(i, before, EventLoop::now());
   }
   void end_code(const EndCodeInfo&, const MachineState& before, Emitter&) override {
-    if (session.current_ == this) session.control_->end_code(before);
+    if (session.current_ == this) session.control_->end_code(before, EventLoop::now());
   }
   bool reads_state() const override { return true; }
 
@@ -125,7 +122,7 @@ int SendSession::read_e_mode(EModeChoice choice, std::string_view name) {
 void SendSession::set_control(const PrintControlConfig& config, const std::string& control_path) {
   control_ = std::make_unique<PrintControl>(config, sender_, diag_, pipeline_.precision());
   if (resumed_layer_ > 0) control_->continue_in_layer(resumed_layer_);
-  sender_.set_action_handler([this](std::string_view action) { control_->action(action); });
+  sender_.set_action_handler([this](std::string_view action) { control_->action(action, EventLoop::now()); });
   control_->on_status = [this] {
     if (progress_) progress_->print_line(snapshot());
   };
@@ -134,7 +131,7 @@ void SendSession::set_control(const PrintControlConfig& config, const std::strin
   };
   if (control_path.empty()) return;
   fifo_ = std::make_unique<ControlFifo>(control_path);
-  parser_ = std::make_unique<ControlParser>([this](const ControlCommand& c) { control_->command(c); },
+  parser_ = std::make_unique<ControlParser>([this](const ControlCommand& c) { control_->command(c, EventLoop::now()); },
                                             [this](std::string_view why) { diag_.warn(0, why); });
   loop_.add_fd(fifo_->fd(), POLLIN, [this](short) {
     fifo_->read_into(*parser_);
@@ -163,16 +160,11 @@ void SendSession::set_journal(SendJournal* journal) {
 }
 
 void SendSession::hash_fed(std::string_view bytes) {
-  input_hash_.update(bytes);
-  if (input_hash_.bytes() - checkpointed_ >= kCheckpointBytes) {
-    checkpointed_ = input_hash_.bytes();
-    journal_->checkpoint(checkpointed_, input_hash_.digest());
-  }
+  if (input_hash_.fed(bytes)) journal_->checkpoint(input_hash_.bytes(), input_hash_.digest());
 }
 
 void SendSession::skip_printed(std::uint64_t bytes, std::uint64_t hash_bytes, std::uint64_t lines, int layer,
                                const MachineState& state) {
-  skipped_hash_ = 0;
   LayerMarkerSearch markers(markers_);
   std::string block(kReadSize, '\0');
   const std::uint64_t need = std::max(bytes, hash_bytes);
@@ -189,30 +181,14 @@ void SendSession::skip_printed(std::uint64_t bytes, std::uint64_t hash_bytes, st
       auto printed = static_cast<std::size_t>(std::min<std::uint64_t>(bytes - done, got.size()));
       std::string_view part = got.substr(0, printed);
       markers.feed(part);
-      std::uint64_t at = input_hash_.bytes();
-      if (hash_bytes > at && hash_bytes <= at + part.size()) {
-        auto head = static_cast<std::size_t>(hash_bytes - at);
-        input_hash_.update(part.substr(0, head));
-        skipped_hash_ = input_hash_.digest();
-        part.remove_prefix(head);
-      }
-      input_hash_.update(part);
+      input_hash_.printed(part, hash_bytes);
       got.remove_prefix(printed);
     }
     in_buf_.append(got);
     done += static_cast<std::uint64_t>(n);
   }
-  if (hash_bytes == 0) skipped_hash_ = PrefixHash().digest();
-  if (hash_bytes > input_hash_.bytes() && done >= hash_bytes) {
-    // The checkpoint lies a little past the printed part: the check hashes
-    // on into what is to be fed, on a copy.
-    PrefixHash check;
-    check.copy_from(input_hash_);
-    check.update(std::string_view(in_buf_).substr(0, static_cast<std::size_t>(hash_bytes - input_hash_.bytes())));
-    skipped_hash_ = check.digest();
-  }
+  input_hash_.printed_end(in_buf_, hash_bytes, done >= hash_bytes);
   skipped_bytes_ = input_hash_.bytes();
-  checkpointed_ = skipped_bytes_;
   input_bytes_ = skipped_bytes_;
   line_base_ = lines;
   layer_base_ = layer;
@@ -283,11 +259,11 @@ void SendSession::layer(const LayerInfo& info, const MachineState& before, Emitt
   LayerInfo shifted = info;
   shifted.index += layer_base_;
   shifted.first_line += line_base_;
-  control_->layer(shifted, before);
+  control_->layer(shifted, before, EventLoop::now());
 }
 
 void SendSession::end_code(const EndCodeInfo&, const MachineState& before, Emitter&) {
-  if (current_ == nullptr) control_->end_code(before);
+  if (current_ == nullptr) control_->end_code(before, EventLoop::now());
 }
 
 // A swapped-in file's lines count on from what was printed before it.
@@ -298,7 +274,7 @@ void SendSession::end_code(const EndCodeInfo&, const MachineState& before, Emitt
 void SendSession::deliver(const TrackedLine& t, int layer_offset, std::uint64_t line_offset, int resumed_layer) {
   ++input_lines_;
   if (layer_offset == 0 && line_offset == 0) {
-    control_->line(t);
+    control_->line(t, EventLoop::now());
     return;
   }
   RawLine raw = t.raw;
@@ -313,7 +289,7 @@ void SendSession::deliver(const TrackedLine& t, int layer_offset, std::uint64_t 
                       t.layer > 0 ? t.layer + layer_offset : resumed_layer,
                       t.feature,
                       t.origin};
-  control_->line(shifted);
+  control_->line(shifted, EventLoop::now());
 }
 
 int SendSession::layers() const {
@@ -328,7 +304,7 @@ void SendSession::start_swap(std::unique_ptr<JoinStream> next, int layers_done) 
   current_->pipeline.add(*current_);
   // The layers and time to come are the other file's: as far as known.
   total_layers_ = 0;
-  estimated_total_ = 0;
+  eta_.set_estimate(0);
   // The input is read no further.
   if (input_watch_ >= 0) loop_.set_events(input_watch_, 0);
 }
@@ -344,7 +320,7 @@ bool SendSession::feed_segment() {
     if (s.text.empty()) {
       s.pipeline.finish();
       input_done_ = true;
-      control_->end_of_input();
+      control_->end_of_input(EventLoop::now());
       return false;
     }
   }
@@ -403,7 +379,7 @@ void SendSession::feed_input() {
       }
       pipeline_.finish();
       input_done_ = true;
-      control_->end_of_input();
+      control_->end_of_input(EventLoop::now());
       break;
     }
     std::string_view fed = std::string_view(in_buf_).substr(in_pos_, nl + 1 - in_pos_);
@@ -466,13 +442,51 @@ void SendSession::flush_port() {
   }
 }
 
+void SendSession::set_reconnect(const std::string& path, const PortOptions& options, double seconds) {
+  reconnect_.emplace(sender_, diag_, path, options, seconds);
+  loop_.add_timer([this] { return reconnect_->next_try(); },
+                  [this](double now) {
+                    try_reconnect(now);
+                    update();
+                  });
+}
+
+std::string_view SendSession::state_label() const {
+  if (sender_.finished()) return "done";
+  if (reconnecting()) return "reconnecting";
+  return control_->state_label();
+}
+
+void SendSession::port_lost(std::string_view why) {
+  if (port_watch_ >= 0) {
+    loop_.set_events(port_watch_, 0);
+    loop_.remove_fd(port_watch_);
+    port_watch_ = -1;
+  }
+  if (!reconnect_) {
+    sender_.disconnected(why);
+    return;
+  }
+  if (!reconnect_->lost(why, EventLoop::now())) return;
+  ::close(port_fd_);
+  port_fd_ = -1;
+  port_replaced_ = true;
+  port_in_.clear();
+}
+
+void SendSession::try_reconnect(double now) {
+  const int fd = reconnect_->attempt(now);
+  if (fd < 0) return;
+  port_fd_ = fd;
+  watch_port();
+}
+
 void SendSession::on_signal() {
   signalfd_siginfo info{};
   while (::read(signal_fd_, &info, sizeof info) == static_cast<ssize_t>(sizeof info)) {
     ++interrupts_;
-    if (reconnecting_) {
-      reconnecting_ = false;
-      sender_.disconnected("interrupted while waiting for the port to come back: nothing more was sent");
+    if (reconnecting()) {
+      reconnect_->give_up("interrupted while waiting for the port to come back: nothing more was sent");
       continue;
     }
     if (interrupts_ == 1 && control_->interrupt()) continue;
@@ -497,15 +511,10 @@ ProgressSnapshot SendSession::snapshot() const {
     s.percent = 100.0 * static_cast<double>(input_bytes_) / static_cast<double>(input_size_);
   }
   s.lines = st.lines;
-  s.elapsed = st.print_start >= 0 ? EventLoop::now() - st.print_start : 0;
+  const double now = EventLoop::now();
+  s.elapsed = st.print_start >= 0 ? now - st.print_start : 0;
   s.lines_per_second = s.elapsed > 0 ? static_cast<double>(st.lines) / s.elapsed : 0;
-  if (current_ == nullptr && eta_origin_wall_ >= 0) {
-    // Paced from the first layer on: the start code's heating is not in the estimate.
-    const double now = EventLoop::now();
-    s.eta = estimated_remaining(estimated_total_ - eta_origin_estimate_, sender_.estimated_time() - eta_origin_estimate_,
-                                now - eta_origin_wall_ - (control_->paused_seconds(now) - eta_origin_paused_));
-  }
-  if (s.eta < 0 && s.percent > 1 && s.elapsed > 0) s.eta = s.elapsed * (100 - s.percent) / s.percent;
+  s.eta = eta_.remaining(now, sender_.estimated_time(), control_->paused_seconds(now), s.percent, s.elapsed);
   s.speed = control_->speed();
   s.temperatures = sender_.temperatures();
   s.resets = static_cast<int>(st.resets);
@@ -542,15 +551,13 @@ void SendSession::update() {
   sender_.pump(EventLoop::now());
   flush_port();
   control_->update(EventLoop::now());
-  if (eta_origin_wall_ < 0 && control_->layer() >= 1) {
-    eta_origin_wall_ = EventLoop::now();
-    eta_origin_estimate_ = sender_.estimated_time();
-    eta_origin_paused_ = control_->paused_seconds(eta_origin_wall_);
+  if (!eta_.pacing() && control_->layer() >= 1) {
+    const double now = EventLoop::now();
+    eta_.layer_one(now, sender_.estimated_time(), control_->paused_seconds(now));
   }
-  if (reconnecting_ && control_->cancelled()) {
+  if (reconnecting() && control_->cancelled()) {
     // Nobody to send the safe end to: the print stops where the printer is.
-    reconnecting_ = false;
-    sender_.disconnected("cancelled while waiting for the port to come back: nothing more was sent");
+    reconnect_->give_up("cancelled while waiting for the port to come back: nothing more was sent");
   }
   if (progress_ && (state_label() != shown_state_ || control_->layer() != shown_layer_)) {
     shown_state_ = state_label();

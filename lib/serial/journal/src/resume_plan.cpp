@@ -37,15 +37,13 @@ std::size_t index_of(const JournalContents& journal, std::uint64_t n) {
 
 std::string position_mismatch(const PositionReport& report, const MachineState& state, double tolerance) {
   static constexpr char kAxes[] = {'X', 'Y', 'Z'};
-  for (int a = 0; a < 3; ++a) {
-    double was = state.at(a).to_double();
-    double is = report.axis[static_cast<std::size_t>(a)];
-    if (std::abs(was - is) > tolerance)
-      return fmt::format("the printer is at {} {:.3f}, the journal says {:.3f} after that line: it did not keep its "
-                         "state (was it reset, or moved by hand?)",
-                         kAxes[a], is, was);
-  }
-  return std::string();
+  const std::array<double, 3> was{state.at(kX).to_double(), state.at(kY).to_double(), state.at(kZ).to_double()};
+  const int a = axis_off(report, was, tolerance);
+  if (a < 0) return std::string();
+  const auto i = static_cast<std::size_t>(a);
+  return fmt::format("the printer is at {} {:.3f}, the journal says {:.3f} after that line: it did not keep its "
+                     "state (was it reset, or moved by hand?)",
+                     kAxes[i], report.axis[i], was[i]);
 }
 
 // The height the nozzle stands at after a state (a z-hop's lift left out).

@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <charconv>
+#include <cmath>
 
 namespace gcode::serial {
 
@@ -60,6 +61,12 @@ std::optional<long long> last_line_of(std::string_view error) {
   auto [end, ec] = std::from_chars(error.data() + pos, error.data() + error.size(), n);
   if (ec != std::errc() || end == error.data() + pos) return std::nullopt;
   return n;
+}
+
+int axis_off(const PositionReport& report, const std::array<double, 3>& expected, double tolerance) {
+  for (std::size_t a = 0; a < 3; ++a)
+    if (report.present[a] && std::fabs(report.axis[a] - expected[a]) > tolerance) return static_cast<int>(a);
+  return -1;
 }
 
 }  // namespace gcode::serial

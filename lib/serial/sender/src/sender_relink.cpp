@@ -5,7 +5,6 @@
 // refused with "Last Line: n" (every line up to n was taken, and a board
 // that kept its power runs them all), then M114 says where it stands, which
 // must be where line n left it.
-#include <cmath>
 
 #include <fmt/format.h>
 
@@ -97,11 +96,11 @@ bool Sender::check_position(std::string_view text, double now) {
   static constexpr const char* kAxes[] = {"X", "Y", "Z"};
   if (relink_line_ > 0) {
     const Slot& s = slot(relink_line_);
-    for (std::size_t a = 0; a < 3; ++a) {
-      if (!report->present[a] || std::fabs(report->axis[a] - s.at[a]) <= 0.01) continue;
+    if (const int a = axis_off(*report, s.at, 0.01); a >= 0) {
+      const auto i = static_cast<std::size_t>(a);
       fail(fmt::format("after the reconnect the printer stands at {}{:.3f}, but N{} ({}) left it at {}{:.3f}: it did not "
                        "keep its state; not going on",
-                       kAxes[a], report->axis[a], relink_line_, describe(last_acked_), kAxes[a], s.at[a]));
+                       kAxes[i], report->axis[i], relink_line_, describe(last_acked_), kAxes[i], s.at[i]));
       return true;
     }
   }

@@ -35,7 +35,7 @@ bool VirtualPrinter::chance(double p) {
 }
 
 void VirtualPrinter::send(std::string_view text) {
-  if (silent_ || halted_ || link_down_) return;
+  if (silent_ || halted_ || outage_.down()) return;
   stats_.tx_bytes += text.size() + 1;
   wire_.transmit(text, now_);
   last_sent_.assign(text);
@@ -68,7 +68,7 @@ double VirtualPrinter::next_event() const {
   }
   if (wait_ != Wait::None && wait_ != Wait::Heating) t = std::min(t, next_busy_);
   t = std::min({t, next_report_, idle_wait_at()});
-  return std::min({t, link_up_at_, schedule_.next_time()});
+  return std::min({t, outage_.up_at(), schedule_.next_time()});
 }
 
 void VirtualPrinter::advance(double now) {
@@ -81,7 +81,7 @@ void VirtualPrinter::advance(double now) {
         t_fw = std::min(t_fw, wait_until_);
       if (wait_ == Wait::Heating) t_fw = std::min(t_fw, heat_done_time());
       if (wait_ != Wait::None && wait_ != Wait::Heating) t_fw = std::min(t_fw, next_busy_);
-      t_fw = std::min({t_fw, next_report_, idle_wait_at(), link_up_at_, schedule_.next_time()});
+      t_fw = std::min({t_fw, next_report_, idle_wait_at(), outage_.up_at(), schedule_.next_time()});
     }
     double t = std::min(t_wire, t_fw);
     if (t > now || t == kNever) break;
@@ -106,7 +106,7 @@ void VirtualPrinter::advance(double now) {
       send(dialect_->idle());
       next_idle_wait_ = t + config_.idle_wait;
     }
-    if (link_up_at_ <= t) link_up(t);
+    if (outage_.up_at() <= t) link_up(t);
     for (ScheduledFault f; schedule_.take_due(t, f);) fire(f, t);
     run(t);
   }

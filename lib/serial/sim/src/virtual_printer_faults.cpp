@@ -53,7 +53,7 @@ void VirtualPrinter::reset(double t) {
   // The part is still on the bed: the layer count (the printer's own view
   // of heights) goes on.
   std::vector<std::string> greeting = dialect_->restart_greeting(config_.greeting);
-  if (config_.greeting == GreetingForm::CutLine && !greeting.empty() && !link_down_) {
+  if (config_.greeting == GreetingForm::CutLine && !greeting.empty() && !outage_.down()) {
     // The first half of the line it was sending, the greeting straight after.
     std::string_view cut = std::string_view(last_sent_).substr(0, (last_sent_.size() + 1) / 2);
     stats_.tx_bytes += cut.size();
@@ -67,17 +67,13 @@ void VirtualPrinter::drop_link(double t, double seconds, bool reset_after) {
   ++stats_.link_drops;
   note(fmt::format("link down at {:.6f} for {:g} s{}", t, seconds, reset_after ? ", then a reset" : ""));
   wire_.clear(t);
-  link_down_ = true;
-  link_up_at_ = t + seconds;
-  reset_on_up_ = reset_after;
+  outage_.begin(t, seconds, reset_after);
 }
 
 void VirtualPrinter::link_up(double t) {
-  link_down_ = false;
-  link_up_at_ = std::numeric_limits<double>::infinity();
+  const bool reset_now = outage_.end();
   note(fmt::format("link up at {:.6f}", t));
-  if (reset_on_up_) reset(t);
-  reset_on_up_ = false;
+  if (reset_now) reset(t);
 }
 
 void VirtualPrinter::fire(const ScheduledFault& fault, double t) {

@@ -70,7 +70,7 @@ class Rig : private Stage {
       if (pos_ == text_.size()) {
         pipeline_.finish();
         input_done_ = true;
-        control_.end_of_input();
+        control_.end_of_input(now_);
         break;
       }
       std::size_t nl = text_.find('\n', pos_);
@@ -108,7 +108,7 @@ class Rig : private Stage {
     REQUIRE(c.verb != nullptr);
     c.argument = std::move(argument);
     c.number = number;
-    control_.command(c);
+    control_.command(c, now_);
     step();
   }
   bool sent(const std::string& command) const {
@@ -117,13 +117,18 @@ class Rig : private Stage {
   const std::vector<std::string>& wire() const { return wire_; }
   std::size_t in_flight() const { return unanswered_.size(); }
   PrintControl& control() { return control_; }
+  // The clock the control and the sender are given: a millisecond an answer.
+  double now() const { return now_; }
+  void wait(double seconds) { now_ += seconds; }
   Sender& sender() { return sender_; }
 
  private:
-  void line(const TrackedLine& t, Emitter&) override { control_.line(t); }
-  void layer(const LayerInfo& info, const MachineState& before, Emitter&) override { control_.layer(info, before); }
+  void line(const TrackedLine& t, Emitter&) override { control_.line(t, now_); }
+  void layer(const LayerInfo& info, const MachineState& before, Emitter&) override {
+    control_.layer(info, before, now_);
+  }
   void end_code(const EndCodeInfo&, const MachineState& before, Emitter&) override {
-    control_.end_code(before);
+    control_.end_code(before, now_);
   }
   bool reads_state() const override { return true; }
 
@@ -269,6 +274,29 @@ TEST_CASE("print control: resume returns to the exact position, E, modes and spe
   CHECK(rig.sender().state() == SenderState::Done);
   CHECK(rig.control().pauses().size() == 1);
   CHECK(rig.control().paused_seconds(1e9) >= 0);
+}
+
+// The pause log's times are the clock the control is given, as the
+// sender's are: a request, the printer done with the block, the resume.
+TEST_CASE("print control: a pause's times are the caller's clock, not the wall's", "[serial][print_control]") {
+  Rig rig(kThreeLayers);
+  rig.run_until_sent("G1 X20 Y20 E4 F1200");
+  rig.wait(100);
+  const double asked = rig.now();
+  rig.command("pause");
+  CHECK(rig.control().pauses().back().wall_request == asked);
+  rig.run();
+  REQUIRE(rig.control().state() == PrintState::Paused);
+  const double reached = rig.control().pauses().back().wall_paused;
+  CHECK(reached > asked);
+  CHECK(reached < asked + 1);  // a millisecond an answer, a few dozen answers
+  rig.wait(30);
+  CHECK(rig.control().paused_seconds(rig.now()) == Approx(rig.now() - reached));
+  const double resumed = rig.now();
+  rig.command("resume");
+  rig.run();
+  // Resumed: what stood still stays counted, later seconds are not.
+  CHECK(rig.control().paused_seconds(rig.now() + 1000) == Approx(resumed - reached));
 }
 
 TEST_CASE("print control: commands typed while paused are put back before the resume block",
@@ -464,17 +492,17 @@ TEST_CASE("print control: the file's own pause holds the lines after it", "[seri
 TEST_CASE("print control: the printer's host actions", "[serial][print_control]") {
   Rig rig(kThreeLayers);
   rig.run_until_sent("G1 X20 Y20 E4 F1200");
-  rig.control().action("paused");  // a report, not a request
+  rig.control().action("paused", rig.now());  // a report, not a request
   CHECK(rig.control().state() == PrintState::Printing);
-  rig.control().action("pause");
+  rig.control().action("pause", rig.now());
   CHECK(rig.control().state() == PrintState::Pausing);
   CHECK(rig.control().pauses().back().request == "//action:pause");
   rig.run();
   CHECK(rig.control().state() == PrintState::Paused);
-  rig.control().action("resume");
+  rig.control().action("resume", rig.now());
   CHECK(rig.control().state() == PrintState::Printing);
   rig.step();
-  rig.control().action("cancel");
+  rig.control().action("cancel", rig.now());
   CHECK(rig.control().cancelled());
 }
 

@@ -59,3 +59,24 @@ TEST_CASE("progress: the ETA from the estimator, paced by the print so far", "[s
   CHECK(estimated_remaining(0, 400, 200) < 0);
   CHECK(estimated_remaining(1000, 1200, 600) == Approx(0));
 }
+
+TEST_CASE("progress: the print's ETA paces from layer 1 on, without the pauses", "[serial]") {
+  gcode::serial::PrintEta eta;
+  eta.set_estimate(1100);
+  // The start code: no pace yet, the rate of the input (20 % in 10 s: 40 s).
+  CHECK(eta.remaining(10, 50, 0, 20, 10) == Approx(40));
+  CHECK(eta.remaining(10, 50, 0, -1, 10) < 0);
+  // Layer 1 at 100 s, 100 estimated seconds handed over (the heating took
+  // wall time the estimate has not), 5 s stood paused by then.
+  eta.layer_one(100, 100, 5);
+  eta.layer_one(150, 300, 5);  // once only
+  REQUIRE(eta.pacing());
+  // 400 estimated seconds more in 230 wall seconds, 30 of them paused: a
+  // pace of 0.5, 600 estimated seconds left take 300.
+  CHECK(eta.remaining(330, 500, 35, 50, 330) == Approx(300));
+  // Too early to tell from the estimate: the rate of the input.
+  CHECK(eta.remaining(102, 101, 5, 50, 102) == Approx(102));
+  // A swapped-in file has no estimate: the rate of its input only.
+  eta.set_estimate(0);
+  CHECK(eta.remaining(330, 500, 35, 75, 330) == Approx(110));
+}

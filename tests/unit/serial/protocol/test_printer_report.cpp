@@ -39,3 +39,20 @@ TEST_CASE("printer report: the last line a line error names", "[serial][journal]
   CHECK_FALSE(last_line_of("Unknown command: \"G999\""));
   CHECK_FALSE(last_line_of("Last Line: none"));
 }
+
+TEST_CASE("printer report: where the printer stands against where it should, axis by axis",
+          "[serial][printer_report]") {
+  using gcode::serial::axis_off;
+  const auto report = gcode::serial::parse_position_report("X:10.00 Y:20.00 Z:0.30 E:12.00 Count X:800 Y:1600 Z:120");
+  REQUIRE(report);
+  CHECK(axis_off(*report, {10, 20, 0.3}, 0.01) == -1);
+  CHECK(axis_off(*report, {10.005, 19.995, 0.3}, 0.01) == -1);  // within the tolerance
+  CHECK(axis_off(*report, {10, 20.5, 0.3}, 0.01) == 1);
+  CHECK(axis_off(*report, {9, 20, 0.5}, 0.01) == 0);  // the first axis off
+  CHECK(axis_off(*report, {10, 20, 0.5}, 0.01) == 2);
+  CHECK(axis_off(*report, {10, 20, 0.5}, 0.5) == -1);
+  // An axis the report does not name is not held against it.
+  gcode::serial::PositionReport partial = *report;
+  partial.present[2] = false;
+  CHECK(axis_off(partial, {10, 20, 5}, 0.01) == -1);
+}

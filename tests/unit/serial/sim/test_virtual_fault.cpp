@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -240,4 +241,20 @@ TEST_CASE("virtual printer: faults at a simulated time and at a layer", "[serial
   std::string text = log.text();
   CHECK(text.find("\tG1 X0 E2 F600\n") != std::string::npos);
   CHECK(text.find("\tG1 X5 E3 F600\n") == std::string::npos);
+}
+
+TEST_CASE("virtual fault: a link outage lasts its seconds and says whether the board restarts",
+          "[serial][virtual_fault]") {
+  LinkOutage outage;
+  CHECK_FALSE(outage.down());
+  CHECK(outage.up_at() == std::numeric_limits<double>::infinity());
+  outage.begin(30, 5, false);
+  CHECK(outage.down());
+  CHECK(outage.up_at() == 35);
+  CHECK_FALSE(outage.end());  // drop: the board ran on
+  CHECK_FALSE(outage.down());
+  CHECK(outage.up_at() == std::numeric_limits<double>::infinity());
+  outage.begin(40, 2, true);
+  CHECK(outage.end());  // drop-reset: it restarts as the link comes back
+  CHECK_FALSE(outage.end());
 }

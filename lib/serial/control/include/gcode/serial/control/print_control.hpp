@@ -45,6 +45,7 @@
 #include "gcode/pipeline/pipeline.hpp"
 #include "gcode/serial/control/control_verbs.hpp"
 #include "gcode/serial/control/pause_log.hpp"
+#include "gcode/serial/control/pause_reentry.hpp"
 #include "gcode/serial/control/take_back.hpp"
 #include "gcode/serial/sender/sender.hpp"
 #include "gcode/transform/join_stream.hpp"
@@ -88,21 +89,25 @@ class PrintControl {
   void add_stages(Pipeline& pipeline);
   void set_probe(MotionProbe probe) { probe_ = std::move(probe); }
 
+  // Every call that can start or end a pause is given `now`, the caller's
+  // clock as the Sender is given it (wall seconds in gc-send, a script's
+  // clock in a test): the pause log's times are on it.
+  //
   // From the sending stage: every line, layer start and the end code.
-  void line(const TrackedLine& t);
-  void layer(const LayerInfo& info, const MachineState& before);
-  void end_code(const MachineState& before);
+  void line(const TrackedLine& t, double now);
+  void layer(const LayerInfo& info, const MachineState& before, double now);
+  void end_code(const MachineState& before, double now);
   // The input has ended (everything held is sent once resumed).
-  void end_of_input();
+  void end_of_input(double now);
 
   // Whether the sending stage may take more input (not holding).
   bool accepts_input() const { return !holding_ && state_ != PrintState::Cancelling; }
   // Whether the sender may be told the input has ended.
   bool input_may_end() const { return !holding_ && held_.empty(); }
 
-  void command(const ControlCommand& c);
+  void command(const ControlCommand& c, double now);
   // The printer's //action: text.
-  void action(std::string_view text);
+  void action(std::string_view text, double now);
   // Ctrl-C: the first cancels; returns false from the second on.
   bool interrupt();
   // Call after the sender moved: notes when a pause block is done.
@@ -125,7 +130,7 @@ class PrintControl {
   std::function<void(std::unique_ptr<JoinStream> next, int layers_done)> on_swap;
   const SeamOptions& seam_options() const { return config_.seam; }
   std::uint64_t swaps() const { return swaps_; }
-  // gc-send --resume of a print that stood paused (print_control_journal.cpp):
+  // gc-send --resume of a print that stood paused (pause_reentry.hpp):
   // the printer stands `parked` (the journal's state after the pause block
   // and anything typed), the print stopped at `at` (with `retracted` mm of
   // its own retraction pending and `top_z` printed). The control waits for
@@ -134,7 +139,7 @@ class PrintControl {
   // inside it, the rest goes out first, and the head parks as it would have:
   // returns how many lines of it that is.
   std::size_t resume_into_pause(const MachineState& at, const MachineState& parked, double retracted, double top_z,
-                         std::size_t taken);
+                                std::size_t taken, double now);
   // gc-send --resume inside layer `layer` (the journal's): the lines up to
   // the next layer are of it, not start code.
   void continue_in_layer(int layer) {
@@ -179,7 +184,6 @@ class PrintControl {
   void request_pause(std::string request, bool now);
   void finish_pausing(const MachineState& at);
   void pause_here(const MachineState& at);
-  std::size_t finish_block(const PausePoint& point, const MachineState& parked, std::size_t taken);
   PauseConfig pause_config(const MachineState& at) const;
   void hold_here(std::string request);
   void stop_at(const MachineState& at, const MachineState& resume_from, bool own_block);
@@ -207,6 +211,7 @@ class PrintControl {
   SpeedStage user_speed_;
   SpeedStage rush_;
   MotionProbe probe_;
+  double now_ = 0;  // the `now` of the call being handled
 
   PrintState state_ = PrintState::Printing;
   bool holding_ = false;

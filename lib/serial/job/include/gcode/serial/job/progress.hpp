@@ -47,6 +47,31 @@ struct ProgressOptions {
 // estimate (then the caller goes by the rate of the input).
 double estimated_remaining(double estimated_total, double estimated_done, double printing_seconds);
 
+// The time left of one print: the estimator's seconds (estimated_remaining)
+// paced from layer 1 on, the start code's heating not being in the estimate;
+// else the rate of the input. Its times are the caller's clock.
+class PrintEta {
+ public:
+  // The estimator's printer seconds for the whole input (0: none, as for a
+  // swapped-in file).
+  void set_estimate(double seconds) { estimate_ = seconds; }
+  // Layer 1 began at `now`: `estimated_done` printer seconds were handed
+  // over by then and `paused` seconds stood paused. Once; later calls are
+  // ignored.
+  void layer_one(double now, double estimated_done, double paused);
+  bool pacing() const { return origin_wall_ >= 0; }
+  // Seconds left, -1 unknown: `estimated_done` and `paused` as above, now;
+  // `percent` of the input sent (-1: unknown) and `elapsed` seconds since
+  // the first line for the rate of the input.
+  double remaining(double now, double estimated_done, double paused, double percent, double elapsed) const;
+
+ private:
+  double estimate_ = 0;
+  double origin_wall_ = -1;     // when layer 1 began (the pace counts from there)
+  double origin_estimate_ = 0;  // the estimate handed over by then
+  double origin_paused_ = 0;    // the seconds stood paused by then
+};
+
 // "printing  layer 12/40  31.0 %  812 lines/s  0:42 elapsed  ETA 1:33"
 std::string progress_line(const ProgressSnapshot& s);
 std::string progress_json(const ProgressSnapshot& s);

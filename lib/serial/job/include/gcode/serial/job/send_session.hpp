@@ -30,7 +30,9 @@
 #include "gcode/pipeline/pipeline.hpp"
 #include "gcode/serial/control/control_fifo.hpp"
 #include "gcode/serial/control/print_control.hpp"
+#include "gcode/serial/job/port_reconnect.hpp"
 #include "gcode/serial/job/progress.hpp"
+#include "gcode/serial/journal/input_hash.hpp"
 #include "gcode/serial/journal/send_journal.hpp"
 #include "gcode/serial/link/event_loop.hpp"
 #include "gcode/serial/link/port.hpp"
@@ -65,7 +67,7 @@ class SendSession : private Stage {
   void set_total_layers(int layers) { total_layers_ = layers; }
   // The estimator's printer seconds for the whole input (sender_estimator_options),
   // when known beforehand: the ETA goes by it.
-  void set_estimated_time(double seconds) { estimated_total_ = seconds; }
+  void set_estimated_time(double seconds) { eta_.set_estimate(seconds); }
   // Keeps the journal (not owned) while printing: before run().
   void set_journal(SendJournal* journal);
   // A resume: the input's first `bytes` were printed before (they are read
@@ -76,17 +78,17 @@ class SendSession : private Stage {
   void skip_printed(std::uint64_t bytes, std::uint64_t hash_bytes, std::uint64_t lines, int layer,
                     const MachineState& state);
   // The hash of the input's first `hash_bytes` (0 when the input ended before).
-  std::uint64_t skipped_hash() const { return skipped_hash_; }
+  std::uint64_t skipped_hash() const { return input_hash_.check_digest(); }
   std::uint64_t skipped_bytes() const { return skipped_bytes_; }
   // A port that fails (EIO, ENODEV, a hang-up) is waited for up to
   // `seconds` at `path` and opened again with `options` (no DTR reset):
-  // send_session_reconnect.cpp. Without it (or with 0 s) a lost port ends
-  // the print at once.
+  // port_reconnect.hpp. Without it (or with 0 s) a lost port ends the
+  // print at once.
   void set_reconnect(const std::string& path, const PortOptions& options, double seconds);
   // Once the port was lost with --reconnect the session closed the
   // descriptor it was given, and closes those it opens itself.
   bool port_replaced() const { return port_replaced_; }
-  bool reconnecting() const { return reconnecting_; }
+  bool reconnecting() const { return reconnect_ && reconnect_->waiting(); }
   PrintControl* control() { return control_.get(); }
   const ControlFifo* fifo() const { return fifo_.get(); }
 
@@ -146,23 +148,15 @@ class SendSession : private Stage {
   std::string port_in_;       // a partial line from the printer
   int input_watch_ = -1;
   int port_watch_ = -1;
-  std::string reconnect_path_;   // "" : a lost port ends the print
-  PortOptions reconnect_options_;
-  double reconnect_seconds_ = 0;
-  bool reconnecting_ = false;
+  std::optional<PortReconnect> reconnect_;  // none: a lost port ends the print
   bool port_replaced_ = false;   // the caller's descriptor is closed; port_fd_ (if >= 0) is ours
-  double lost_at_ = 0;
-  double next_try_ = 0;
   int interrupts_ = 0;
   double started_ = 0;
   double next_report_ = 0;
   std::string_view shown_state_;   // what the progress last showed
   int shown_layer_ = -1;
   int total_layers_ = 0;
-  double estimated_total_ = 0;
-  double eta_origin_wall_ = -1;     // when layer 1 began (the ETA's pace counts from there)
-  double eta_origin_estimate_ = 0;  // the estimate handed over by then
-  double eta_origin_paused_ = 0;
+  PrintEta eta_;
   // Swapped-in files, all kept: a swap starts inside a pipeline's call.
   std::vector<std::unique_ptr<Segment>> segments_;
   Segment* current_ = nullptr;  // what is fed now (null: the input)
@@ -172,10 +166,8 @@ class SendSession : private Stage {
   int layer_base_ = 0;             // ... and layers printed before it
   int resumed_layer_ = 0;          // ... the layer it stopped in (the journal's; 0: the start code)
   double resumed_z_ = 0;           // ... and the nozzle's height there
-  std::uint64_t skipped_hash_ = 0;
   std::uint64_t skipped_bytes_ = 0;
-  PrefixHash input_hash_;            // the input's bytes fed (or printed before a resume)
-  std::uint64_t checkpointed_ = 0;  // bytes of the journal's newest checkpoint
+  InputHash input_hash_;            // the input's bytes fed (or printed before a resume)
   std::uint64_t fed_lines_ = 0;     // input lines fed to the pipeline (a resume's not counted)
 };
 

@@ -26,6 +26,12 @@ struct PositionReport {
 // line is not one (it has no X:, Y: and Z: before any "Count").
 std::optional<PositionReport> parse_position_report(std::string_view line);
 
+// Whether the printer stands where it should: the first of X, Y, Z (0, 1,
+// 2) at which `report` is more than `tolerance` mm from `expected`; -1 when
+// none is. The one check of "where is the printer" after a fault, for the
+// sender's reconnect and gc-send --resume's plan alike.
+int axis_off(const PositionReport& report, const std::array<double, 3>& expected, double tolerance);
+
 // The "Last Line: n" of a Marlin line error; nullopt when it names none.
 std::optional<long long> last_line_of(std::string_view error);
 

@@ -17,6 +17,7 @@
 //   @layer=N         when the first extruding move at the Nth new height has
 //                    been executed (layers counted by the printer itself).
 #include <cstdint>
+#include <limits>
 #include <string_view>
 #include <vector>
 
@@ -60,6 +61,31 @@ class FaultSchedule {
  private:
   bool take_if(ScheduledFault& fault, bool (*due)(const ScheduledFault&, double, double), double a, double b);
   std::vector<ScheduledFault> faults_;
+};
+
+// A link drop while it lasts: down from `t` for some seconds, the board
+// restarting when it comes back (drop-reset) or running on (drop).
+class LinkOutage {
+ public:
+  void begin(double t, double seconds, bool reset_after) {
+    down_ = true;
+    up_at_ = t + seconds;
+    reset_after_ = reset_after;
+  }
+  bool down() const { return down_; }
+  // When the link comes back (infinity while it is up).
+  double up_at() const { return up_at_; }
+  // The link is back: whether the board restarts now.
+  bool end() {
+    const bool reset = reset_after_;
+    *this = LinkOutage();
+    return reset;
+  }
+
+ private:
+  bool down_ = false;
+  bool reset_after_ = false;
+  double up_at_ = std::numeric_limits<double>::infinity();
 };
 
 }  // namespace gcode::serial

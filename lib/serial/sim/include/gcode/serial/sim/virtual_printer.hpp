@@ -79,7 +79,7 @@ class VirtualPrinter {
   // buffer one byte time apart, after what is already on the wire.
   // While the link is down they are lost.
   void receive(std::string_view bytes, double now) {
-    if (!link_down_) wire_.receive(bytes, now);
+    if (!outage_.down()) wire_.receive(bytes, now);
   }
   // Runs the model up to `now`.
   void advance(double now);
@@ -104,7 +104,7 @@ class VirtualPrinter {
   // board executes what it has; with `reset_after` it restarts when the link
   // comes back.
   void drop_link(double t, double seconds, bool reset_after);
-  bool link_down() const { return link_down_; }
+  bool link_down() const { return outage_.down(); }
   // Homed since the last reset (G28).
   bool homed() const { return homed_; }
   // Layers begun: new heights at which the printer extruded (kept across resets).
@@ -239,8 +239,8 @@ class VirtualPrinter {
   bool own_paused_ = false;      // Prusa's own pause (M601) is on
   bool restart_pending_ = false; // FIRMWARE_RESTART done: the restart follows its ok
   FaultSchedule schedule_;
-  bool link_down_ = false, reset_on_up_ = false, homed_ = false;
-  double link_up_at_ = std::numeric_limits<double>::infinity();
+  LinkOutage outage_;
+  bool homed_ = false;
   int layer_ = 0, started_layer_ = 0;  // started_layer_: by the command executing
   double top_z_ = -1e300;
   std::mt19937 rng_;
