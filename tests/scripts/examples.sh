@@ -30,9 +30,12 @@ m600=$(grep -n '^M600' "$out/star.paused.gcode" | cut -d: -f1)
 l14=$(grep -n '^;LAYER:14$' "$out/star.paused.gcode" | cut -d: -f1)
 l15=$(grep -n '^;LAYER:15$' "$out/star.paused.gcode" | cut -d: -f1)
 expect "M600 between layers 15 and 16" yes "$([ "$l14" -lt "$m600" ] && [ "$m600" -lt "$l15" ] && echo yes || echo no)"
-expect "the print went through without a fault" 1 \
+# One print, or two where PrusaSlicer is installed too (the prusa route).
+prints=$(grep -c 'gc-send: summary: ' "$out/make.log" || true)
+expect "prints on the virtual printer" yes "$([ "$prints" -ge 1 ] && echo yes || echo no)"
+expect "every print went through without a fault" "$prints" \
   "$(grep -c 'gc-send: summary: .* resends 0, errors 0, .* timeouts 0' "$out/make.log")"
-expect "nothing lost on the virtual printer" 1 "$(grep -c 'bytes lost to overruns 0' "$out/make.log")"
+expect "nothing lost on the virtual printer" "$prints" "$(grep -c 'bytes lost to overruns 0' "$out/make.log")"
 checks=$((checks + 1))
 xmllint --noout "$out/star-sheet.svg" || fail "the preview sheet is not valid XML"
 expect "layer table rows" 30 "$(grep -cE '^ +[0-9]+ +[0-9]+ ' "$out/star.layers.txt" || true)"
