@@ -1,33 +1,43 @@
 #!/usr/bin/env bash
-# gc-litho against conventional slicing (issue 15's comparison; a benchmark,
-# not a timed test): for three pictures (ImageMagick's rose: and wizard:, and
-# a grey gradient) and both shapes, gc-litho writes the lithophane and its STL;
-# Debian's CuraEngine slices that STL at the paper's settings (walls 40 mm/s,
-# 100 % infill at 100 mm/s, the same layer height and line width, lines and
-# concentric infill); the gc-layers estimator times both (heating left out,
-# the same Marlin limits for both) and the table gives the ratio
-# gc-litho / Cura over the layers (start and end code left out) and in total.
+# gc-litho against conventional slicing, with the time explained by feature
+# (issue 43; a benchmark, not a timed test). For the test pictures of
+# bench/litho-pictures.sh (large light areas, large dark areas, fine detail, a
+# drawn face), flat (100 mm wide) and cylinder (54.8 mm, 60 mm high), gc-litho
+# writes the lithophane and its STL; Debian's CuraEngine slices that STL at
+# the paper's settings (walls 40 mm/s, 100 % infill at 100 mm/s, 0.45 mm
+# lines, 0.2 mm layers, no adhesion) with lines and with concentric infill;
+# gc-layers --time-by-feature --no-heat-time times all three with the same
+# Marlin limits and splits the layers' time (start and end code left out):
+#   walls     WALL-OUTER + WALL-INNER at their nominal speed
+#   middle    gc-litho's passes (FILL) / Cura's infill and skin (FILL, SKIN)
+#   travel    moves without extrusion, and retraction
+#   layer     moves to the next layer's Z
+#   accel     what speeding up and slowing down costs below the nominal speeds
+# and the ratio of gc-litho's layers to each Cura's. Target: <= 0.70 for both.
 #
-#   bench/litho-vs-cura.sh [BIN_DIR] [WORK_DIR]
+#   bench/litho-vs-cura.sh [BIN_DIR] [WORK_DIR] [-- GC-LITHO OPTIONS]
 #
 # BIN_DIR: the built tools (build/bin); WORK_DIR: scratch (a temp dir).
 # Needs: apt-get install -y cura-engine imagemagick; the Cura definitions in
-# ../shared/slicer-defs/cura (or SLICER_DEFS). Target: ratio <= 0.70.
+# ../shared/slicer-defs/cura (or SLICER_DEFS).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-bin=${1:-$here/../build/bin}
+bin=$(cd "${1:-$here/../build/bin}" && pwd)
 work=${2:-$(mktemp -d)}
-defs=${SLICER_DEFS:-$here/../../shared/slicer-defs/cura}
+shift $(( $# < 2 ? $# : 2 ))
+[ "${1:-}" = -- ] && shift
+extra=("$@")
+defs=${SLICER_DEFS:-}
+for d in "$here/../../shared/slicer-defs/cura" "$here/../../../shared/slicer-defs/cura"; do
+  [ -z "$defs" ] && [ -f "$d/corpus_marlin.def.json" ] && defs=$(cd "$d" && pwd)
+done
 for need in CuraEngine convert python3; do
   command -v "$need" >/dev/null || { echo "litho-vs-cura: $need is missing (apt-get install -y cura-engine imagemagick)" >&2; exit 1; }
 done
-[ -f "$defs/corpus_marlin.def.json" ] || { echo "litho-vs-cura: no Cura definitions in $defs (set SLICER_DEFS)" >&2; exit 1; }
+[ -f "${defs:-}/corpus_marlin.def.json" ] || { echo "litho-vs-cura: no Cura definitions found (set SLICER_DEFS)" >&2; exit 1; }
 mkdir -p "$work"
 cd "$work"
-
-convert rose: rose.png
-convert wizard: wizard.png
-convert -size 160x100 gradient:black-white -rotate 90 gradient.png
+"$here/litho-pictures.sh" .
 
 # The paper's conventional baseline. CuraEngine's command line does not
 # evaluate Cura's formulas, so every derived setting is given. The minimum
@@ -47,36 +57,47 @@ cura_settings=(
   -s material_bed_temperature=60 -s material_bed_temperature_layer_0=60
 )
 
-# Seconds from gc-layers --time --json: total and the layers alone.
-times() {
-  "$bin/gc-layers" --time --no-heat-time --json "$1" | python3 -c '
-import json, sys
-j = json.load(sys.stdin)
-total = j["summary"]["time_s"]
-layers = sum(l["time_s"] for l in j["layers"])
-count = len(j["layers"])
-print(f"{total:.1f} {layers:.1f} {count}")'
+cura() {  # STL PATTERN OUT
+  CURA_ENGINE_SEARCH_PATH=$defs CuraEngine slice -j "$defs/corpus_marlin.def.json" "${cura_settings[@]}" \
+    -s infill_pattern="$2" -s top_bottom_pattern="$2" -s top_bottom_pattern_0="$2" -l "$1" -o "$3" 2>"$3.log"
 }
 
-printf '| picture | shape | layers | gc-litho (layers) | Cura lines | ratio | Cura concentric | ratio | total ratio (lines) |\n'
+# One row of the breakdown: walls middle travel layer accel layers (seconds).
+breakdown() {
+  "$bin/gc-layers" --time-by-feature --no-heat-time --json "$1" | python3 -c '
+import json, sys
+f = json.load(sys.stdin)["summary"]["time_by_feature"]
+walls = sum(s for n, s in f["features"].items() if n.startswith("WALL"))
+middle = sum(s for n, s in f["features"].items() if not n.startswith("WALL")) + f["unnamed_s"]
+travel = f["travel_s"] + f["retract_s"]
+print("%.0f %.0f %.0f %.0f %.0f %.1f" % (walls, middle, travel, f["layer_change_s"], f["acceleration_s"], f["layers_s"]))'
+}
+
+printf '| plate | program | walls | middle / infill | travel | layer changes | acceleration | layers | gc-litho / this |\n'
 printf '|---|---|---|---|---|---|---|---|---|\n'
-for picture in rose wizard gradient; do
+worst_lines=0 worst_concentric=0
+for picture in light dark detail portrait; do
   for shape in flat cylinder; do
     name=$picture-$shape
     args=()
     [ "$shape" = cylinder ] && args=(--shape cylinder --height 60)
-    "$bin/gc-litho" "$picture.png" "${args[@]}" --stl "$name.stl" -o "$name.gcode" -q
-    read -r lt ll layers < <(times "$name.gcode")
-    row="| $picture | $shape | $layers | $(printf '%.0f s' "$ll")"
-    total_ratio=
+    "$bin/gc-litho" "$picture.png" "${args[@]}" "${extra[@]}" --stl "$name.stl" -o "$name.gcode" -q
+    cura "$name.stl" lines "$name-lines.gcode" &
+    cura "$name.stl" concentric "$name-concentric.gcode"
+    wait
+    read -r w m t l a litho < <(breakdown "$name.gcode")
+    echo "| $name | gc-litho | $w s | $m s | $t s | $l s | $a s | $(printf '%.0f' "$litho") s | |"
     for pattern in lines concentric; do
-      CURA_ENGINE_SEARCH_PATH=$defs CuraEngine slice -j "$defs/corpus_marlin.def.json" "${cura_settings[@]}" \
-        -s infill_pattern=$pattern -s top_bottom_pattern=$pattern -s top_bottom_pattern_0=$pattern \
-        -l "$name.stl" -o "$name-cura-$pattern.gcode" 2>"$name-cura-$pattern.log"
-      read -r ct cl _ < <(times "$name-cura-$pattern.gcode")
-      row="$row | $(printf '%.0f s' "$cl") | $(python3 -c "print(f'{$ll / $cl:.2f}')")"
-      [ -z "$total_ratio" ] && total_ratio=$(python3 -c "print(f'{$lt / $ct:.2f}')")
+      read -r w m t l a layers < <(breakdown "$name-$pattern.gcode")
+      ratio=$(python3 -c "print(f'{$litho / $layers:.2f}')")
+      echo "| | Cura $pattern | $w s | $m s | $t s | $l s | $a s | $(printf '%.0f' "$layers") s | $ratio |"
+      if [ "$pattern" = lines ]; then
+        worst_lines=$(python3 -c "print(max($worst_lines, $ratio))")
+      else
+        worst_concentric=$(python3 -c "print(max($worst_concentric, $ratio))")
+      fi
     done
-    echo "$row | $total_ratio |"
   done
 done
+echo
+echo "worst gc-litho / Cura: lines $worst_lines, concentric $worst_concentric (target: at most 0.70)"

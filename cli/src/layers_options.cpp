@@ -29,6 +29,9 @@ void add_layers_options(Tool& tool, LayersToolOptions& o) {
   app.add_option("--profile", o.profile,
                  "Machine limits: a key = value file (a PrusaSlicer config.ini works), or the built-in cura or marlin")
       ->type_name("FILE");
+  app.add_flag("--time-by-feature", o.time_by_feature,
+               "With --time: also the layers' time by ;TYPE: feature, travel, layer changes, retraction, at nominal "
+               "speed, and what acceleration costs apart");
   app.add_flag("--no-heat-time", o.no_heat_time, "Leave heating waits (M109, M190) out of the time, as slicers do");
   app.add_option("--svg", o.svg, "Draw layer(s) RANGE from above as SVG (to --svg-out, or standard output)")->type_name("RANGE");
   app.add_option("--svg-sheet", o.svg_sheet, "Draw the layers in RANGE on one SVG page, as a grid")->type_name("RANGE");
@@ -39,6 +42,7 @@ void add_layers_options(Tool& tool, LayersToolOptions& o) {
       ->type_name("PX")
       ->check(CLI::Range(50.0, 20000.0));
   tool.check([&o] {
+    if (o.time_by_feature) o.time = true;
     if (o.io.in_place && !o.cutting()) throw UsageError("--in-place goes with --extract or --z-range");
     if (!o.io.output.empty() && !o.cutting()) throw UsageError("-o goes with --extract or --z-range");
     if (o.cutting() && (o.json || o.where > 0)) throw UsageError("cutting does not combine with --json or --where");

@@ -67,10 +67,16 @@ void add_path_options(const Adder& add, LithoToolOptions& o) {
   add.mm("--nozzle", o.plan.nozzle, "Nozzle diameter", path);
   add.mm("--line-width", o.plan.line_width, "Wall line width (0 = nozzle x 1.125)", path, true);
   add.mm("--filament-diameter", o.plan.filament_diameter, "Filament diameter", path);
-  add.speed("--wall-speed", o.plan.wall_speed, "Speed of both walls", path);
-  add.speed("--infill-speed", o.plan.infill_speed, "Conventional infill speed that sets the passes' extruder rate", path);
-  app.add_option("--max-flow", o.plan.max_flow, "Cap on the passes' extruder rate, mm3/s")->type_name("MM3_S")
-      ->check(positive())->capture_default_str()->group(path);
+  add.speed("--wall-speed", o.plan.wall_speed, "Speed of the walls", path);
+  app.add_flag("--base-wall", o.plan.base_wall,
+               "The base surface as a wall at --wall-speed, as the paper prints it (default: a bead at the passes' rate)")
+      ->group(path);
+  app.add_option("--infill-speed", o.plan.infill_speed,
+                 "Conventional infill speed whose extruder rate the passes keep (0 = the rate is --max-flow)")
+      ->type_name("MM_S")->check(non_negative())->capture_default_str()->group(path);
+  app.add_option("--max-flow", o.plan.max_flow,
+                 "The passes' extruder rate (the hot end's melt limit; a 0.4 mm E3D V6-class: 15 for PLA), mm3/s")
+      ->type_name("MM3_S")->check(positive())->capture_default_str()->group(path);
   add.speed("--min-speed", o.plan.min_speed, "Slowest pass (slower: width kept, rate changes)", path);
   add.speed("--max-speed", o.plan.max_speed, "Fastest pass (faster: width kept, rate changes)", path);
   add.mm("--max-pass-width", o.plan.max_pass_width, "Wider gaps get more passes of equal width (0 = 2.5 x nozzle)", path, true);
@@ -109,7 +115,7 @@ CLI::Option* add_texture_options(const Adder& add, LithoToolOptions& o) {
 // Mode 2: the mapping and the speeds from the options.
 void resolve_texture(CLI::App& app, LithoToolOptions& o, bool binary) {
   refuse(app, {"--shape", "--diameter", "--min", "--max", "--border", "--gamma", "--contrast", "--layer-height",
-               "--nozzle", "--line-width", "--filament-diameter", "--wall-speed", "--infill-speed", "--max-flow",
+               "--nozzle", "--line-width", "--filament-diameter", "--wall-speed", "--base-wall", "--infill-speed", "--max-flow",
                "--min-speed", "--max-speed", "--max-pass-width", "--min-pass-width", "--nozzle-temp",
                "--bed-temp", "--start", "--end", "--travel-speed", "--retract", "--retract-speed", "--stl"},
          "makes a lithophane (mode 1); it does not go with --texture");

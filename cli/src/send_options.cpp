@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "gcode/serial/control/control_fifo.hpp"
+#include "gcode/serial/control/object_cancel.hpp"
 #include "gcode/serial/journal/journal.hpp"
 #include "gcode/serial/protocol/line_check.hpp"
 #include "gcode/serial/sim/virtual_printer_link.hpp"
@@ -24,7 +25,7 @@ void add_send_options(Tool& tool, SendOptions& o) {
   app.add_option("-p,--port", j.port, "Serial port or pseudo-terminal path, or virtual[:key=value,...] (default: virtual)")
       ->type_name("PATH|virtual[:OPTS]")->group(link);
   app.add_option("-b,--baud", j.baud, "Baud rate, any value (default 250000; 115200, 500000 ...)")->type_name("BAUD")->group(link);
-  app.add_option("--flow", o.flow, "window (default), ping-pong, advanced-ok or auto")
+  app.add_option("--flow", o.flow, "auto (default), window, ping-pong or advanced-ok")
       ->type_name("MODE")->check(CLI::IsMember({"window", "ping-pong", "advanced-ok", "auto"}))->group(link);
   app.add_option("--queue", o.queue, "Commands the firmware queues (Marlin BUFSIZE, default 4)")->type_name("N")->group(link);
   app.add_option("--rx-buffer", o.rx_buffer, "Firmware serial receive buffer in bytes (RX_BUFFER_SIZE, default 128)")
@@ -86,6 +87,10 @@ void add_send_options(Tool& tool, SendOptions& o) {
   app.add_option("--pause-on", o.pause_on,
                  "M-codes handled as a host pause and not sent, e.g. M0,M1,M25,M601 (@pause and ;@pause always are)")
       ->type_name("CODES")->group(control);
+  app.add_option("--exclude", o.exclude,
+                 "Objects left out of the print, by id or name (gc-objects lists them), host side on every firmware; "
+                 "`cancel object` leaves out more while it prints")
+      ->type_name("ID[,ID...]")->group(control);
   app.add_option("--cancel-gcode", o.cancel_gcode,
                  "G-code (a file, or text with \\n between lines) after the park of a cancel (default: "
                  "M104 S0, M140 S0, M107, M84)")
@@ -169,6 +174,7 @@ void resolve_send_options(Tool& tool, SendOptions& o) {
     j.control.pause_on.push_back(n);
     codes = comma == std::string_view::npos ? std::string_view() : codes.substr(comma + 1);
   }
+  j.control.exclude = serial::object_terms(o.exclude);
   resolve_pause_options(o.pause);
   j.control.pause = o.pause.config;
   j.control_path = o.no_control ? std::string() : !o.control.empty() ? o.control : serial::default_control_path(j.port);

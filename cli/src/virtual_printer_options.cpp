@@ -21,6 +21,15 @@ void add_firmware_options(CLI::App& app, VirtualPrinterToolOptions& o) {
   app.add_option("--baud", c.baud, "Simulated link speed (default 250000)")->type_name("BAUD");
   app.add_option("--queue", c.queue, "Command queue entries, Marlin BUFSIZE (default 4)")->type_name("N");
   app.add_option("--rx-buffer", c.rx_buffer, "Serial receive buffer, RX_BUFFER_SIZE (default 128)")->type_name("BYTES");
+  app.add_option("--write-timeout", c.write_timeout,
+                 "A write that meets a full receive buffer waits for room up to S simulated seconds, then the rest "
+                 "of it is dropped (default 0: lost at once)")
+      ->type_name("S");
+  app.add_flag("--scripted-errors", c.scripted_errors,
+               "OctoPrint's scripted errors: lines 100, 105 (its ok lost), 110 (no line number) and 115 refused once");
+  app.add_flag("--octoprint", o.octoprint,
+               "OctoPrint's virtual printer's defaults: --rx-buffer 64 --write-timeout 10 --scripted-errors "
+               "--instant-moves");
   app.add_option("--max-line", c.max_line,
                  "Command buffer, MAX_CMD_SIZE (default 96): a line keeps its first BYTES - 1 bytes")
       ->type_name("BYTES");
@@ -68,6 +77,7 @@ void resolve(VirtualPrinterToolOptions& o) {
   serial::parse_virtual_options(opts + "firmware=" + c.firmware, c);
   c.greeting = serial::parse_greeting_form(o.greeting);
   if (o.no_link_report) c.report_link = false;
+  if (o.octoprint) gcode::serial::parse_virtual_options("octoprint", c);
   if (o.no_resend_ok) c.resend_ok = false;
   if (c.baud < 50 || c.queue < 1 || c.rx_buffer < 16 || c.max_line < 16 || c.planner < 1 || !(c.time_scale > 0) ||
       !(c.speed_factor > 0) || !(o.run.drop_seconds >= 0) || !(c.user_seconds >= 0) || !(c.idle_wait >= 0))

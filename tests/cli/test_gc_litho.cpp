@@ -96,13 +96,13 @@ Lithophane prove(const std::string& name, const std::string& image, const std::s
   CHECK(m.layers == static_cast<std::size_t>(planner.layer_count()));
   CHECK(m.worst_volume_error < 0.03);
   CHECK(m.rate_pieces > 500);
-  CHECK(m.worst_rate_error < 0.01);
+  CHECK(m.worst_rate_error < 0.015);  // as in test_litho_gcode.cpp: the base bead on a cylinder
   // gc-layers reads the output as a Cura file: the layers and the types.
   auto j = run(gctest::tool_command("gc-layers", "--json"), r.out);
   REQUIRE(j.status == 0);
   const nlohmann::json table = nlohmann::json::parse(j.out);
   CHECK(table["layers"].size() == static_cast<std::size_t>(planner.layer_count()));
-  CHECK_THAT(r.out, Catch::Contains(";TYPE:WALL-OUTER\n") && Catch::Contains(";TYPE:WALL-INNER\n") &&
+  CHECK_THAT(r.out, Catch::Contains(";TYPE:WALL-OUTER\n") && !Catch::Contains(";TYPE:WALL-INNER\n") &&
                         Catch::Contains(";TYPE:FILL\n") && Catch::Contains(";TIME:"));
   return l;
 }

@@ -73,6 +73,8 @@ Measured measure(const HeightMap& map, const LithophanePlanner& planner, const s
     for (const Bead& b : layers[i]) volume += b.filament * kFilamentArea;
     const double expected = band_volume(map, sample_z, o.layer_height);
     m.worst_volume_error = std::max(m.worst_volume_error, std::abs(volume / expected - 1));
+    m.total_volume += volume;
+    m.expected_volume += expected;
     // Gaps, on rays a little off the sample grid.
     if (map.closed()) {
       const double radius = map.base_radius();

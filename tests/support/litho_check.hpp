@@ -43,6 +43,8 @@ Coverage coverage(const std::vector<Bead>& beads, double ox, double oy, double u
 
 struct Measured {
   double worst_volume_error = 0;  // relative, over all layers
+  double total_volume = 0;        // mm3 deposited in all layers
+  double expected_volume = 0;     // mm3 of the height map's band over all layers
   double worst_gap = 0;           // mm
   double worst_surface = 0;       // mm
   double worst_rate_error = 0;    // relative, over unclamped fill pieces above the first layer

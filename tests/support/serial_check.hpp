@@ -67,4 +67,42 @@ inline ExecutedLog parse_executed_log(std::string_view text) {
   return log;
 }
 
+// gc-send's own lines (an M105 question, a bare G1 pace probe), numbered
+// like the file's, taken out of `log` where `expected` (the commands of the
+// input, in order) does not have them: what is left is the input's, in
+// order, with numbers that only rise. Returns how many were taken out.
+inline std::size_t drop_own_lines(ExecutedLog& log, const std::vector<std::string>& expected) {
+  ExecutedLog kept;
+  kept.unnumbered = log.unnumbered;
+  kept.notes = log.notes;
+  std::size_t j = 0, own = 0;
+  for (std::size_t i = 0; i < log.commands.size(); ++i) {
+    const std::string& c = log.commands[i];
+    if (j < expected.size() && c == expected[j]) {
+      ++j;
+    } else if (c == "G1" || c == "M105") {
+      ++own;
+      continue;
+    }
+    kept.commands.push_back(c);
+    kept.numbers.push_back(log.numbers[i]);
+  }
+  log = std::move(kept);
+  return own;
+}
+
+inline std::size_t drop_own_lines(ExecutedLog& log, const std::vector<SentCommand>& expected) {
+  std::vector<std::string> texts;
+  for (const SentCommand& c : expected) texts.push_back(c.text);
+  texts.emplace_back("M400");
+  return drop_own_lines(log, texts);
+}
+
+// The numbers of what the printer executed only rise (each line once, in order).
+inline bool numbers_rise(const std::vector<long long>& numbers) {
+  for (std::size_t i = 1; i < numbers.size(); ++i)
+    if (numbers[i] <= numbers[i - 1]) return false;
+  return true;
+}
+
 }  // namespace gctest

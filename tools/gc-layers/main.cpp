@@ -7,6 +7,7 @@
 #include "gcode/cli/filter.hpp"
 #include "gcode/cli/layers_options.hpp"
 #include "gcode/cli/tool.hpp"
+#include "gcode/report/feature_time.hpp"
 #include "gcode/report/layer_report.hpp"
 #include "gcode/report/layer_svg.hpp"
 #include "gcode/report/layer_table.hpp"
@@ -62,6 +63,7 @@ int run(Options& o, gcode::Diagnostics& diag) {
   std::optional<gcode::LayerTable> table;
   if (!o.cutting()) run.add(table.emplace());
   std::optional<gcode::LayerTimer> timer;
+  std::optional<gcode::FeatureTimer> feature_timer;
   if (o.time || picture_range) {
     gcode::EstimatorOptions estimate;
     estimate.heat_time = !o.no_heat_time;
@@ -69,6 +71,7 @@ int run(Options& o, gcode::Diagnostics& diag) {
     if (!o.profile.empty()) estimate.limits.load_profile(o.profile);
     timer.emplace(estimate);
     run.add(*timer);
+    if (o.time_by_feature) run.add(feature_timer.emplace(estimate));
   }
   std::optional<gcode::LayerDrawer> drawer;
   if (picture_range) {
@@ -110,6 +113,8 @@ int run(Options& o, gcode::Diagnostics& diag) {
   const gcode::LayerTracker& tracker = run.pipeline().tracker();
   gcode::ReportOptions report{run.input().name(), o.density, o.filament_diameter, tracker.mode()};
   if (timer) report.times = &timer->times();
+  gcode::FeatureTimes features;
+  if (feature_timer) report.features = &(features = feature_timer->times([&](int id) { return tracker.feature_name(id); }));
   std::string text = o.json ? gcode::layer_table_json(*table, tracker, report) : gcode::layer_table_text(*table, tracker, report);
   gcode::cli::write_output_file("", [&](gcode::OutputBuffer& out) { out.write(text); });
   return 0;

@@ -26,6 +26,7 @@ const char* type_name(PathRole role) {
       return ";TYPE:WALL-OUTER";
     case PathRole::WallInner:
       return ";TYPE:WALL-INNER";
+    case PathRole::Base:
     case PathRole::Fill:
       break;
   }
@@ -121,7 +122,7 @@ class Emitter {
     if (p.pieces.empty()) return;
     if (!combed_travel(p, z)) travel(p.start, z);
     retract(false);
-    if (p.role != role_ || !typed_) {
+    if (std::string_view(type_name(p.role)) != type_name(role_) || !typed_) {
       line(type_name(p.role));
       role_ = p.role;
       typed_ = true;
@@ -238,6 +239,7 @@ std::vector<std::string> litho_parameters(const LithophanePlanner& planner, cons
   add("max_flow", number_string(o.max_flow, 3) + " mm3/s");
   add("fill_rate", number_string(planner.fill_rate(), 3) + " mm3/s (constant extruder rate of the passes)");
   add("wall_rate", number_string(planner.wall_rate(), 3) + " mm3/s");
+  add("base", o.base_wall ? "a wall at wall_speed" : "a bead at fill_rate");
   add("min_speed", number_string(o.min_speed, 3) + " mm/s");
   add("max_speed", number_string(o.max_speed, 3) + " mm/s");
   add("min_pass_width", number_string(o.min_pass_width, 3) + " mm");

@@ -35,7 +35,8 @@ void LithoOptions::validate(const HeightMapOptions& map) const {
   require_positive(r.line_width, "--line-width");
   require_positive(r.filament_diameter, "--filament-diameter");
   require_positive(r.wall_speed, "--wall-speed");
-  require_positive(r.infill_speed, "--infill-speed");
+  if (!(std::isfinite(r.infill_speed) && r.infill_speed >= 0))
+    throw std::invalid_argument("--infill-speed must be 0 (the passes at --max-flow) or above");
   require_positive(r.max_flow, "--max-flow");
   require_positive(r.min_speed, "--min-speed");
   require_positive(r.max_speed, "--max-speed");
@@ -78,7 +79,7 @@ LithophanePlanner::LithophanePlanner(const HeightMap& map, const LithoOptions& o
     throw std::invalid_argument(
         fmt::format("the lithophane ({:.2f} mm) is lower than one layer ({} mm)", map.height(), h));
   layers_ = std::max(1, static_cast<int>(std::lround(map.height() / h)));
-  fill_rate_ = std::min(lw * h * options_.infill_speed, options_.max_flow);
+  fill_rate_ = options_.infill_speed > 0 ? std::min(lw * h * options_.infill_speed, options_.max_flow) : options_.max_flow;
   wall_rate_ = std::min(lw * h * options_.wall_speed, options_.max_flow);
   const double r = options_.filament_diameter / 2;
   filament_area_ = std::numbers::pi * r * r;
@@ -266,10 +267,11 @@ void LithophanePlanner::plan_layer(int index, LithoLayer& out) const {
   std::vector<double> s;
   std::vector<Column> cols;
   sample_layer(out.sample_z, s, cols);
+  const double base_rate = options_.base_wall ? wall_rate_ : fill_rate_;
   if (map_.closed())
-    plan_wall_rings(s, cols, wall_rate_ * factor, out);
+    plan_wall_rings(s, cols, wall_rate_ * factor, base_rate * factor, out);
   else
-    plan_wall_loop(s, cols, wall_rate_ * factor, out);
+    plan_wall_loop(s, cols, wall_rate_ * factor, base_rate * factor, out);
   plan_fill(s, cols, fill_rate_ * factor, out);
 }
 
@@ -404,27 +406,30 @@ LithophanePlanner::Strip LithophanePlanner::wall_strip(double s0, const Column& 
   return outer ? Strip{s0, c0.t - c0.wall, c0.t, s1, c1.t - c1.wall, c1.t} : Strip{s0, 0, c0.wall, s1, 0, c1.wall};
 }
 
-// A cylinder's walls: the outer ring, then the inner ring, as the paper
-// prints them; both start at s = 0.
+PathRole LithophanePlanner::base_role() const { return options_.base_wall ? PathRole::WallInner : PathRole::Base; }
+
+// A cylinder's walls: the outer ring, then the inner (base) ring, as the
+// paper prints them; both start at s = 0.
 void LithophanePlanner::plan_wall_rings(const std::vector<double>& s, const std::vector<Column>& cols, double rate,
-                                        LithoLayer& out) const {
+                                        double base_rate, LithoLayer& out) const {
   for (bool outer : {true, false}) {
     Path path;
-    path.role = outer ? PathRole::WallOuter : PathRole::WallInner;
+    path.role = outer ? PathRole::WallOuter : base_role();
+    const double r = outer ? rate : base_rate;
     const double mid0 = outer ? cols[0].t - cols[0].wall / 2 : cols[0].wall / 2;
     path.start = point_at(0, mid0);
     for (std::size_t k = 0; k + 1 < s.size(); ++k)
-      add_strip(wall_strip(s[k], cols[k], s[k + 1], cols[k + 1], outer), rate, path, out.stats);
+      add_strip(wall_strip(s[k], cols[k], s[k + 1], cols[k + 1], outer), r, path, out.stats);
     if (!path.pieces.empty()) path.pieces.back().to = path.start;  // close the ring exactly
     out.paths.push_back(std::move(path));
   }
 }
 
-// A flat plate's walls, one loop: the inner wall left to right along the
-// base, a cap across the right end, the outer wall back along the picture,
-// a cap across the left end.
+// A flat plate's walls, one loop: the base bead (or inner wall) left to
+// right along the base, a cap across the right end, the outer wall back
+// along the picture, a cap across the left end.
 void LithophanePlanner::plan_wall_loop(const std::vector<double>& s, const std::vector<Column>& cols, double rate,
-                                       LithoLayer& out) const {
+                                       double base_rate, LithoLayer& out) const {
   const double lw = options_.line_width;
   const double zs = out.sample_z;
   const double left = lw / 2;
@@ -432,13 +437,13 @@ void LithophanePlanner::plan_wall_loop(const std::vector<double>& s, const std::
   const Column cl = column(left, zs);
   const Column cr = column(right, zs);
   Path inner;
-  inner.role = PathRole::WallInner;
+  inner.role = base_role();
   inner.start = point_at(left, cl.wall / 2);
-  add_strip(wall_strip(left, cl, s[0], cols[0], false), rate, inner, out.stats);
+  add_strip(wall_strip(left, cl, s[0], cols[0], false), base_rate, inner, out.stats);
   const std::size_t last = s.size() - 1;
   for (std::size_t k = 0; k < last; ++k)
-    add_strip(wall_strip(s[k], cols[k], s[k + 1], cols[k + 1], false), rate, inner, out.stats);
-  add_strip(wall_strip(s[last], cols[last], right, cr, false), rate, inner, out.stats);
+    add_strip(wall_strip(s[k], cols[k], s[k + 1], cols[k + 1], false), base_rate, inner, out.stats);
+  add_strip(wall_strip(s[last], cols[last], right, cr, false), base_rate, inner, out.stats);
   Path outer;
   outer.role = PathRole::WallOuter;
   outer.start = end_of(inner);

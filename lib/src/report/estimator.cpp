@@ -257,7 +257,7 @@ void Estimator::finalize_front() {
   double v_out = count_ > 1 ? ring_[(head_ + 1) % capacity].entry : b.exit_limit;
   v_out = std::min(v_out, reachable(v_in, b.accel, b.length));
   double t = trapezoid_time(b.length, v_in, v_out, b.nominal, b.accel);
-  account(b.kind, b.tag, t);
+  account(b, t);
   front_entry_ = v_out;
   head_ = (head_ + 1) % capacity;
   --count_;
@@ -316,14 +316,14 @@ void Estimator::heat_wait(const Line& line, bool bed) {
   }
 }
 
-void Estimator::account(Kind kind, std::int64_t tag, double seconds) {
+void Estimator::account(const Block& b, double seconds) {
   elapsed_ += seconds;
-  switch (kind) {
+  switch (b.kind) {
     case Kind::Print: breakdown_.print += seconds; break;
     case Kind::Travel: breakdown_.travel += seconds; break;
     case Kind::Retract: breakdown_.retract += seconds; break;
   }
-  if (sink_ != nullptr) sink_->on_time(tag, seconds);
+  if (sink_ != nullptr) sink_->on_motion(b.tag, seconds, b.nominal > kTiny ? b.length / b.nominal : 0.0);
 }
 
 void Estimator::account_wait(double TimeBreakdown::*field, double seconds) {

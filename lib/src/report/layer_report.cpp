@@ -96,6 +96,14 @@ std::string layer_table_text(const LayerTable& table, const LayerTracker& tracke
                    format_duration(t->total()), format_duration(t->start),
                    format_duration(t->total() - t->start - t->end), format_duration(t->end));
   }
+  if (const FeatureTimes* f = o.features) {
+    out += "time by feature (layers, at nominal speed; acceleration apart):";
+    for (const FeatureTimes::Feature& x : f->features) fmt::format_to(std::back_inserter(out), " {} {:.1f} s,", x.name, x.seconds);
+    if (f->unnamed > 0) fmt::format_to(std::back_inserter(out), " unnamed {:.1f} s,", f->unnamed);
+    fmt::format_to(std::back_inserter(out),
+                   " travel {:.1f} s, layer changes {:.1f} s, retraction {:.1f} s, acceleration {:.1f} s, waits {:.1f} s\n",
+                   f->travel, f->layer_change, f->retract, f->acceleration, f->waits);
+  }
   const Box3& b = table.extrusion_bounds();
   if (!b.empty()) {
     fmt::format_to(std::back_inserter(out), "extrusion bounds: X {:.3f}..{:.3f}  Y {:.3f}..{:.3f}  Z {:.3f}..{:.3f}\n",
@@ -166,6 +174,20 @@ std::string layer_table_json(const LayerTable& table, const LayerTracker& tracke
   if (o.times)
     fmt::format_to(std::back_inserter(out), ", \"time_s\": {:.3f}, \"time\": \"{}\"", o.times->total(),
                    format_duration(o.times->total()));
+  if (const FeatureTimes* f = o.features) {
+    out += ", \"time_by_feature\": {\"features\": {";
+    for (std::size_t i = 0; i < f->features.size(); ++i) {
+      if (i) out += ", ";
+      append_json_string(out, f->features[i].name);
+      fmt::format_to(std::back_inserter(out), ": {:.3f}", f->features[i].seconds);
+    }
+    fmt::format_to(std::back_inserter(out),
+                   "}}, \"unnamed_s\": {:.3f}, \"travel_s\": {:.3f}, \"layer_change_s\": {:.3f}, \"retract_s\": {:.3f}, "
+                   "\"acceleration_s\": {:.3f}, \"waits_s\": {:.3f}, \"layers_s\": {:.3f}, \"start_code_s\": {:.3f}, "
+                   "\"end_code_s\": {:.3f}}}",
+                   f->unnamed, f->travel, f->layer_change, f->retract, f->acceleration, f->waits, f->layers(), f->start,
+                   f->end);
+  }
   out += "}\n}\n";
   return out;
 }

@@ -66,7 +66,9 @@ TEST_CASE("gc-send: a printer reset in a print with firmware retraction (G10/G11
   int retracted_targets = 0;
   for (int line : {2500, 4000, 5500, 7000, 8500}) {
     INFO("reset at line " << line);
-    gctest::PtyRun r = gctest::send_through_pty(file, "--no-journal",
+    // (--no-pace: no pace probes among the numbers, so the reset lands at
+    // the input's command `line`, in the layers.)
+    gctest::PtyRun r = gctest::send_through_pty(file, "--no-journal --no-pace",
                                                 "--time-scale 200 --heat-rate 1000 --fault reset@line=" +
                                                     std::to_string(line));
     INFO(r.result.err);

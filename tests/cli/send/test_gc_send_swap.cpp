@@ -58,7 +58,7 @@ void require_same(const std::vector<gctest::Executed>& log, const std::vector<gc
     REQUIRE(log[i].command == expected[i].text);
   }
   CHECK(log.back().command == "M400");
-  for (std::size_t i = 0; i < log.size(); ++i) REQUIRE(log[i].number == static_cast<long long>(i + 1));
+  for (std::size_t i = 1; i < log.size(); ++i) REQUIRE(log[i].number > log[i - 1].number);
 }
 
 }  // namespace

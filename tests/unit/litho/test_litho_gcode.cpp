@@ -68,8 +68,9 @@ Measured prove(const char* name, const HeightMap& map, double gap_step) {
   report(name, m, g.stats);
   CHECK(m.layers == static_cast<std::size_t>(planner.layer_count()));
   CHECK(m.worst_volume_error < 0.03);
+  CHECK(std::abs(m.total_volume / m.expected_volume - 1) < 0.001);  // the paper's: completely filled
   CHECK(m.rate_pieces > 1000);
-  CHECK(m.worst_rate_error < 0.01);
+  CHECK(m.worst_rate_error < 0.015);  // the base bead (typed FILL) on a cylinder: see the report of issue 43
   return m;
 }
 
@@ -111,13 +112,13 @@ TEST_CASE("litho G-code: the G-code has Cura layer markers and types and every p
   CHECK(lines.front() == ";FLAVOR:Marlin\n");
   CHECK_THAT(g.text, Catch::Contains(";TIME:1234\n") && Catch::Contains(";LAYER_COUNT:100\n") &&
                          Catch::Contains(";LAYER:0\n") && Catch::Contains(";LAYER:99\n") &&
-                         !Catch::Contains(";LAYER:100\n") && Catch::Contains(";TYPE:WALL-INNER\n") &&
+                         !Catch::Contains(";LAYER:100\n") && !Catch::Contains(";TYPE:WALL-INNER\n") &&
                          Catch::Contains(";TYPE:WALL-OUTER\n") && Catch::Contains(";TYPE:FILL\n"));
   for (const std::string& p : gcode::litho::litho_parameters(planner, options))
     CHECK_THAT(g.text, Catch::Contains(";  " + p + "\n"));
   CHECK_THAT(g.text, Catch::Contains("image = gradient.png (64 x 32 pixels)") &&
                          Catch::Contains("wall_speed = 40 mm/s") && Catch::Contains("line_width = 0.45 mm") &&
-                         Catch::Contains("fill_rate = 9 mm3/s"));
+                         Catch::Contains("fill_rate = 15 mm3/s"));
   const littest::Replayed r = littest::replay(g.text);
   CHECK(r.layer_markers == 100);
   CHECK(r.layer_count_header == 100);

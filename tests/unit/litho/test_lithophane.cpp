@@ -47,7 +47,7 @@ TEST_CASE("litho planner: a uniform full thickness plate is exactly filled by a 
   const HeightMap map(flat_grey(0), plate(20));  // 3.0 mm everywhere, 20 x 20 mm
   const LithophanePlanner planner(map, LithoOptions{});
   CHECK(planner.layer_count() == 100);
-  CHECK(planner.fill_rate() == Approx(0.45 * 0.2 * 100));  // conventional infill at 100 mm/s: 9 mm3/s
+  CHECK(planner.fill_rate() == Approx(15));  // the hot end's melt limit, --max-flow
   CHECK(planner.wall_rate() == Approx(0.45 * 0.2 * 40));
   LithoLayer layer;
   planner.plan_layer(50, layer);
@@ -56,7 +56,8 @@ TEST_CASE("litho planner: a uniform full thickness plate is exactly filled by a 
   // The gap is 3.0 - 2 x 0.45 = 2.1 mm: three passes of 0.7 mm (max pass width 1.0 mm).
   CHECK(layer.stats.max_passes == 3);
   CHECK(count_role(layer, PathRole::Fill) == 3);
-  CHECK(count_role(layer, PathRole::WallInner) == 1);
+  CHECK(count_role(layer, PathRole::Base) == 1);
+  CHECK(count_role(layer, PathRole::WallInner) == 0);
   CHECK(count_role(layer, PathRole::WallOuter) == 1);
   CHECK(layer.stats.band_area == Approx(20 * 3.0).epsilon(1e-12));
   CHECK(layer.stats.volume == Approx(20 * 3.0 * 0.2).epsilon(1e-12));
@@ -65,10 +66,11 @@ TEST_CASE("litho planner: a uniform full thickness plate is exactly filled by a 
     for (const auto& piece : path.pieces) {
       if (path.role == PathRole::Fill) {
         REQUIRE(piece.width == Approx(0.7));
-        REQUIRE(piece.speed == Approx(9 / (0.7 * 0.2)));  // v = q / (W x H)
+        REQUIRE(piece.speed == Approx(15 / (0.7 * 0.2)));  // v = q / (W x H)
       } else {
         REQUIRE(piece.width == Approx(0.45));
-        REQUIRE(piece.speed == Approx(40));
+        // The outer wall (and its caps) at wall speed, the base bead at q.
+        REQUIRE(piece.speed == Approx(path.role == PathRole::Base ? 15 / (0.45 * 0.2) : 40));
       }
     }
   // The wall loop closes on its start; passes sit side by side, 0.7 mm apart.
@@ -87,13 +89,17 @@ TEST_CASE("litho planner: a band thinner than two walls is shared by the walls a
   planner.plan_layer(3, layer);
   CHECK(count_role(layer, PathRole::Fill) == 0);
   CHECK(layer.stats.band_area == Approx(20 * 0.8).epsilon(1e-12));
-  // Along the plate each wall is 0.4 mm: faster than 40 mm/s so that the
-  // rate stays 3.6 mm3/s. The inner wall is straight and even: one move.
+  // Along the plate each wall is 0.4 mm: the outer one faster than 40 mm/s
+  // so that the rate stays 3.6 mm3/s, the base bead at q. The base bead is
+  // straight and even: one move.
   const auto& inner = layer.paths[0];
+  REQUIRE(inner.role == PathRole::Base);
   REQUIRE(inner.pieces.size() == 1);
   CHECK(inner.pieces[0].width == Approx(0.4));
-  CHECK(inner.pieces[0].speed == Approx(3.6 / (0.4 * 0.2)));
+  CHECK(inner.pieces[0].speed == Approx(15 / (0.4 * 0.2)));
   CHECK(inner.pieces[0].to.x - inner.start.x == Approx(20 - 0.45));
+  CHECK(layer.paths[1].pieces[1].width == Approx(0.4));  // past the end cap
+  CHECK(layer.paths[1].pieces[1].speed == Approx(3.6 / (0.4 * 0.2)));
 }
 
 TEST_CASE("litho planner: a gap narrower than the minimum pass gets no pass and the walls close it", "[litho][lithophane]") {
@@ -126,7 +132,8 @@ TEST_CASE("litho planner: pass counts follow the gap and every layer's strips ti
 TEST_CASE("litho planner: a clamped speed keeps the width and the piece is counted", "[litho][lithophane]") {
   const HeightMap map(flat_grey(0), plate(20));
   LithoOptions slow;
-  slow.max_speed = 50;  // the passes want 64.3 mm/s
+  slow.max_speed = 50;  // the passes want 107 mm/s
+  slow.base_wall = true;  // the base as a wall at 40 mm/s, under the limit
   const LithophanePlanner planner(map, slow);
   LithoLayer layer;
   planner.plan_layer(5, layer);
@@ -142,6 +149,8 @@ TEST_CASE("litho planner: a clamped speed keeps the width and the piece is count
   LithoOptions fast;
   fast.min_speed = 100;
   fast.max_speed = 300;
+  fast.infill_speed = 100;  // q of conventional infill at 100 mm/s: 9 mm3/s
+  fast.base_wall = true;
   const LithophanePlanner p2(map, fast);
   p2.plan_layer(5, layer);
   CHECK(layer.stats.clamped_slow == layer.stats.pieces);  // walls (40) and passes (64) both below 100
@@ -168,7 +177,7 @@ TEST_CASE("litho planner: a cylinder layer is an outer ring an inner ring and cl
   planner.plan_layer(20, layer);
   REQUIRE(layer.paths.size() == 5);
   CHECK(layer.paths[0].role == PathRole::WallOuter);
-  CHECK(layer.paths[1].role == PathRole::WallInner);
+  CHECK(layer.paths[1].role == PathRole::Base);
   const double r = 20;
   CHECK(layer.stats.band_area == Approx(std::numbers::pi * ((r + 3) * (r + 3) - r * r)).epsilon(1e-9));
   for (const auto& path : layer.paths) {
@@ -248,4 +257,31 @@ TEST_CASE("litho planner: a one-pixel line between two samples is followed to it
   const double slope_pieces = 2.2 / (4 * planner.options().edge_gap);
   CHECK(fill_pieces >= static_cast<std::size_t>(slope_pieces));
   CHECK(fill_pieces <= static_cast<std::size_t>(4 * slope_pieces));
+}
+
+TEST_CASE("litho planner: the faster defaults lay every bead where and as wide as the paper's walls and rate", "[litho][lithophane]") {
+  // Tones come from the widths: at q = --max-flow with the base as a bead
+  // the pieces are the paper's (inner wall, q of infill at 100 mm/s), only faster.
+  const HeightMap map(littest::gradient(64, 32), plate(40));
+  LithoOptions paper;
+  paper.base_wall = true;
+  paper.infill_speed = 100;
+  const LithophanePlanner fast(map, LithoOptions{}), slow(map, paper);
+  LithoLayer a, b;
+  for (int i : {1, 37, 80}) {
+    fast.plan_layer(i, a);
+    slow.plan_layer(i, b);
+    REQUIRE(a.paths.size() == b.paths.size());
+    CHECK(a.stats.volume == Approx(b.stats.volume).epsilon(1e-12));
+    for (std::size_t p = 0; p < a.paths.size(); ++p) {
+      REQUIRE(a.paths[p].pieces.size() == b.paths[p].pieces.size());
+      CHECK((a.paths[p].role == PathRole::Base) == (b.paths[p].role == PathRole::WallInner));
+      for (std::size_t k = 0; k < a.paths[p].pieces.size(); ++k) {
+        REQUIRE(a.paths[p].pieces[k].width == b.paths[p].pieces[k].width);
+        REQUIRE(a.paths[p].pieces[k].to.x == b.paths[p].pieces[k].to.x);
+        REQUIRE(a.paths[p].pieces[k].to.y == b.paths[p].pieces[k].to.y);
+        if (a.paths[p].role != PathRole::WallOuter) REQUIRE(a.paths[p].pieces[k].speed >= b.paths[p].pieces[k].speed);
+      }
+    }
+  }
 }

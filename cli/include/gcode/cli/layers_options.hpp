@@ -20,6 +20,7 @@ struct LayersToolOptions {
   bool time = false;
   std::string profile;
   bool no_heat_time = false;
+  bool time_by_feature = false;  // implies time
   std::string svg;
   std::string svg_sheet;
   std::string svg_out;

@@ -18,7 +18,7 @@ struct SendOptions {
   serial::VirtualPrinterConfig vconfig;  // --port virtual[:OPTIONS]: the simulated printer job.link makes
   FilterOptions io;         // FILE, --layer-marker, --e-mode: read as every tool reads G-code
   PauseOptions pause;
-  std::string flow = "window";
+  std::string flow = "auto";
   int queue = 4, rx_buffer = 128, max_timeouts = 5;
   int max_line = 96;
   double timeout = 10;
@@ -29,6 +29,7 @@ struct SendOptions {
   std::string resume;       // --resume [JOURNAL]
   std::string pause_on;     // M0,M1,...
   std::string cancel_gcode;
+  std::string exclude;      // --exclude ID[,ID...]
   bool no_pace = false;
   bool list_ports = false;
   bool delta = false;       // --delta: no resume after a reset

@@ -19,6 +19,7 @@ struct VirtualPrinterToolOptions {
   std::vector<std::string> faults;   // --fault KEY=VALUE, repeatable
   std::string greeting = "start";    // --greeting FORM
   bool no_resend_ok = false, no_link_report = false;
+  bool octoprint = false;  // OctoPrint's virtual printer's defaults
 };
 
 // Every option, and the check that settles the config (faults and greeting

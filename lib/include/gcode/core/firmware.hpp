@@ -63,9 +63,10 @@ struct FirmwareFlavor {
   // Klipper and RepRapFirmware say nothing until the command's ok.
   bool busy_keepalive = true;
   // Its ok means the command was read and queued, not that the planner
-  // had room: Klipper's host answers at once until about 2 s of motion is
-  // queued, so the oks say nothing of the planner's blocks and the sender
-  // does not pace moves on it (Sender::pacing).
+  // had room: Klipper's host answers at once until about 1 s of motion is
+  // queued (then a move's ok waits for that second and its own time), so
+  // the oks say nothing of the planner's blocks and the sender does not
+  // pace moves on it (Sender::pacing).
   bool ok_when_queued = false;
   // A G1 that moves nothing waits for a free planner block before it is
   // dropped, so its ok says the planner had a block free then, and none

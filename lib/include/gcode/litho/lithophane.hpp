@@ -7,6 +7,7 @@
 // and every resolution step, and the pieces tile it exactly. The design, the
 // cutting rules and the rates: docs/lithophanes.md. Memory is one layer:
 // plan_layer fills a caller's buffer.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -20,8 +21,8 @@ struct LithoOptions {
   double line_width = 0;          // mm; 0 = nozzle x 1.125
   double filament_diameter = 1.75;
   double wall_speed = 40;         // mm/s, both walls (the paper's base speed)
-  double infill_speed = 100;      // mm/s of conventional infill that sets q (the paper's baseline)
-  double max_flow = 12;           // mm3/s cap on q (what a common hot end melts)
+  double infill_speed = 0;        // mm/s of conventional infill that sets q; 0 = q is max_flow
+  double max_flow = 15;           // mm3/s: q, or its cap (what a 0.4 mm E3D V6-class hot end melts of PLA)
   double min_speed = 5;           // mm/s
   double max_speed = 200;         // mm/s
   double max_pass_width = 0;      // mm; 0 = 2.5 x nozzle
@@ -31,6 +32,7 @@ struct LithoOptions {
   double surface_tolerance = 0.02;  // mm: a pixel's corner is a sample point where the chord misses it by more
   double min_piece = 0.005;       // mm: the shortest piece cutting makes
   double first_layer_factor = 0.5;  // speed (and rate) factor on the first layer
+  bool base_wall = false;         // the base surface as a wall at wall speed (the paper's); else a bead at q
   double center_x = 110;          // mm: where the lithophane stands on the bed
   double center_y = 110;
 
@@ -41,7 +43,10 @@ struct LithoOptions {
   void validate(const HeightMapOptions& map) const;
 };
 
-enum class PathRole : std::uint8_t { WallOuter, WallInner, Fill };
+// Base: the bead along the base surface, where the paper has its inner wall,
+// at the passes' rate q (the picture does not need a wall there); it is
+// ordered with the outer wall (one loop on a plate) and written as FILL.
+enum class PathRole : std::uint8_t { WallOuter, WallInner, Base, Fill };
 
 // One extruding move: from the previous piece's end (or the path's start) to `to`.
 struct Piece {
@@ -126,8 +131,11 @@ class LithophanePlanner {
   struct FillGrid;   // where the passes lie
   void sample_candidates(double first, double span, int n, std::vector<double>& cand) const;
   void sample_layer(double zs, std::vector<double>& s, std::vector<Column>& cols) const;
-  void plan_wall_rings(const std::vector<double>& s, const std::vector<Column>& cols, double rate, LithoLayer& out) const;
-  void plan_wall_loop(const std::vector<double>& s, const std::vector<Column>& cols, double rate, LithoLayer& out) const;
+  PathRole base_role() const;
+  void plan_wall_rings(const std::vector<double>& s, const std::vector<Column>& cols, double rate, double base_rate,
+                       LithoLayer& out) const;
+  void plan_wall_loop(const std::vector<double>& s, const std::vector<Column>& cols, double rate, double base_rate,
+                      LithoLayer& out) const;
   void plan_fill(const std::vector<double>& s, const std::vector<Column>& cols, double rate, LithoLayer& out) const;
   void plan_fill_rings(const FillGrid& grid, int count, double rate, LithoLayer& out) const;
   Point plan_fill_group(const FillGrid& grid, int k, int end, int count, Point cur, double rate, LithoLayer& out) const;

@@ -46,6 +46,10 @@ class ObjectExcluder : public Stage {
   // (names registered so far: a live stream may name objects only as it goes).
   int current() const { return current_; }
   const ObjectTracker& tracker() const { return tracker_; }
+  // A stream that goes on from lines read elsewhere (gc-send --resume reads
+  // the labels of the printed part): the names, their numbering and the
+  // object the stream stands in, as `before` left them.
+  void continue_from(const ObjectTracker& before) { tracker_ = before; }
   // Motion lines left out so far, and extrusions among them.
   std::uint64_t dropped_lines() const { return dropped_; }
   std::uint64_t dropped_extrusions() const { return dropped_extrusions_; }

@@ -63,6 +63,13 @@ class TimeSink {
   virtual ~TimeSink() = default;
   // `seconds` of the line(s) fed under `tag` are now final.
   virtual void on_time(std::int64_t tag, double seconds) = 0;
+  // A move's `seconds` are final; `cruise_seconds` of them it would take at
+  // its nominal speed all the way (the rest is lost to acceleration). Waits
+  // come through on_time only.
+  virtual void on_motion(std::int64_t tag, double seconds, double cruise_seconds) {
+    (void)cruise_seconds;
+    on_time(tag, seconds);
+  }
 };
 
 class Estimator {
@@ -110,7 +117,7 @@ class Estimator {
   double junction_speed(const std::array<double, 4>& axis_speed, double nominal, double accel, double safe,
                         const std::array<double, 4>& unit) const;
   void heat_wait(const Line& line, bool bed);
-  void account(Kind kind, std::int64_t tag, double seconds);
+  void account(const Block& b, double seconds);
   void account_wait(double TimeBreakdown::*field, double seconds);
 
   EstimatorOptions options_;

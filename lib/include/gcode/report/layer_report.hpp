@@ -21,8 +21,14 @@
 // With --time (ReportOptions::times set): every Region and Layer also has
 // "time_s", every Layer "cumulative_s" (from the start of the file to its
 // end), and the summary "time_s" and "time" ("h:mm:ss").
+// With --time-by-feature (ReportOptions::features set) the summary also has
+// "time_by_feature": {"features": {"<;TYPE: name>": s, ...}, "unnamed_s",
+// "travel_s", "layer_change_s", "retract_s", "acceleration_s", "waits_s",
+// "layers_s", "start_code_s", "end_code_s"} (feature_time.hpp: every move at
+// its nominal speed, what acceleration costs on its own; they add up to layers_s).
 #include <string>
 
+#include "gcode/report/feature_time.hpp"
 #include "gcode/report/layer_table.hpp"
 #include "gcode/report/layer_time.hpp"
 
@@ -34,6 +40,7 @@ struct ReportOptions {
   double filament_diameter = 1.75;  // mm
   LayerMode mode = LayerMode::Markers;
   const LayerTimes* times = nullptr;  // --time: time columns and the total
+  const FeatureTimes* features = nullptr;  // --time-by-feature: where the layers' time goes
 };
 
 class LayerTracker;

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "gcode/core/number.hpp"
+#include "gcode/core/text.hpp"
 #include "gcode/serial/control/control_verbs.hpp"
 #include "gcode/serial/control/print_control.hpp"
 
@@ -58,6 +59,22 @@ std::span<const ControlVerb> control_verbs() {
       {.name = "cancel",
        .help = "safe end: retract, lift, park, --cancel-gcode (heaters, fan, motors off)",
        .handle = [](PrintControl& p, C) { p.cancel(); }},
+      {.name = "cancel object",
+       .argument = "ID|NAME",
+       .help = "leave objects out from the next line on (several may follow), host side; print on",
+       .handle =
+           [](PrintControl& p, C c) {
+             if (!p.cancelled()) p.objects_.cancel(c.argument);
+           },
+       .journal_field = "cancelled",
+       .journal = [](const PrintControl& p) { return p.objects_.journal_text(); },
+       .restore = [](PrintControl& p, std::string_view kept) { p.objects_.exclude(split_lines(kept), "the journal", true); }},
+      {.name = "objects",
+       .help = "list the objects named so far: id, name, printing, kept or cancelled",
+       .handle =
+           [](PrintControl& p, C) {
+             for (const std::string& line : p.objects_.listing()) p.diag_.report(line);
+           }},
       {.name = "status",
        .help = "one progress line",
        .handle =

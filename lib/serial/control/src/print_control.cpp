@@ -57,13 +57,17 @@ PrintControl::PrintControl(const PrintControlConfig& config, Sender& sender, Dia
       diag_(diagnostics),
       precision_(precision),
       user_speed_(speed_options(1, true, config), precision),
-      rush_(speed_options(std::max(1.0, config.rush), false, config), precision) {
+      rush_(speed_options(std::max(1.0, config.rush), false, config), precision),
+      objects_(diagnostics, precision) {
   config_.pause.method = PauseMethod::None;
+  objects_.exclude(config_.exclude, "--exclude");
   user_speed_.set_enabled(false);
   rush_.set_enabled(false);
 }
 
-void PrintControl::add_stages(Pipeline& pipeline) {
+void PrintControl::add_stages(Pipeline& pipeline, std::uint64_t line_offset, int resumed_layer) {
+  // First: what the excluder writes to catch up is sped up like the rest.
+  objects_.add_stage(pipeline, line_offset, resumed_layer);
   pipeline.add(user_speed_);
   pipeline.add(rush_);
 }
@@ -222,7 +226,7 @@ void PrintControl::withdraw_unsent() {
 
 // What the sender has sent can no longer be taken back.
 void PrintControl::forget_sent() {
-  ledger_.sent_through(sender_.last_submitted() - static_cast<long long>(sender_.pending()));
+  ledger_.keep_unsent(sender_.pending());
 }
 
 // Lines of its own go to the sender: what came before them cannot be taken
@@ -252,6 +256,8 @@ PauseConfig PrintControl::pause_config(const MachineState& at) const {
   Placeholders values{{"layer", std::to_string(std::max(layer_, 1))}, {"z", std::string(number_text(at.position[kZ], 3, zt))}};
   for (std::string* text : {&c.message, &c.host_message, &c.before_wait, &c.after_wait})
     *text = expand_placeholders(*text, values);
+  // A Klipper without a display refuses M117 ('// Unknown command:"M117"').
+  if (std::string_view(sender_.flavour().name) == "klipper") c.message.clear();
   return c;
 }
 

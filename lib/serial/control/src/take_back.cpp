@@ -4,8 +4,8 @@
 
 namespace gcode::serial {
 
-void TakeBackLedger::sent_through(long long sent) {
-  while (!entries_.empty() && entries_.front().number <= sent) {
+void TakeBackLedger::keep_unsent(std::size_t unsent) {
+  while (entries_.size() > unsent) {
     sent_source_ = entries_.front().source;
     entries_.pop_front();
   }

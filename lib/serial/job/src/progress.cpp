@@ -67,10 +67,10 @@ std::string progress_json(const ProgressSnapshot& s) {
       "{{\"state\": \"{}\", \"layer\": {}, \"layers\": {}, \"percent\": {}, \"lines\": {}, \"lines_per_second\": {:.1f}, "
       "\"elapsed\": {:.3f}, \"eta\": {}, \"speed\": {:g}, \"pauses\": {}, \"last_pause_mm\": {}, \"last_pause_s\": {}, "
       "\"last_pause_layer\": {}, \"last_paused_before\": {}, \"resets\": {}, \"redone_mm\": {:.1f}, "
-      "\"temperatures\": \"{}\"}}\n",
+      "\"temperatures\": \"{}\"{}}}\n",
       s.state, s.layer, s.layers, num(s.percent), s.lines, s.lines_per_second, s.elapsed, num(s.eta), s.speed, s.pauses,
       num(s.last_pause_mm), num(s.last_pause_s), s.last_pause_layer, s.last_paused_before, s.resets, s.redone_mm,
-      s.temperatures);
+      s.temperatures, s.objects.empty() ? std::string() : ", \"objects\": " + s.objects);
 }
 
 Progress::Progress(ProgressOptions options, Diagnostics& diagnostics)
@@ -89,13 +89,14 @@ void Progress::print_line(const ProgressSnapshot& s) {
 }
 
 void Progress::report(const ProgressSnapshot& s, double now, bool force) {
-  bool changed = s.state != last_state_ || s.layer != last_layer_;
+  bool changed = s.state != last_state_ || s.layer != last_layer_ || s.objects != last_objects_;
   if (!options_.status_file.empty() && (force || changed || now >= last_status_ + 1)) {
     write_status(s);
     last_status_ = now;
   }
   last_state_ = std::string(s.state);
   last_layer_ = s.layer;
+  last_objects_ = s.objects;
   if (options_.mode == ProgressMode::Off) return;
   if (!force && now < last_line_ + interval()) return;
   last_line_ = now;

@@ -65,10 +65,10 @@ void print_summary(const Sender& sender, const PrinterLink& link, const PrintCon
                          s.redone_mm);
   diag.report(fmt::format(
       "summary: lines {}, time {:.3f} s, {:.0f} lines/s, {}, flow {}, resends {}, errors {}, overdue answers {}, "
-      "timeouts {}{}",
+      "timeouts {}, pace probes {}, polls {}{}",
       s.lines, elapsed, elapsed > 0 ? static_cast<double>(s.lines) / elapsed : 0.0,
       link_report(sender, baud, scale, pty, elapsed), flow_mode_name(sender.flow().effective()), s.resend_requests,
-      s.errors, s.probes, s.timeouts, input));
+      s.errors, s.probes, s.timeouts, s.pace_probes, s.polls, input));
   for (const PauseRecord& p : control.pauses()) {
     std::string latency = p.latency_mm >= 0 ? fmt::format(", motion went on {:.2f} mm and {:.3f} s (printer time) "
                                                           "after the request",
@@ -79,6 +79,7 @@ void print_summary(const Sender& sender, const PrinterLink& link, const PrintCon
     diag.report(fmt::format("pause ({}): asked in layer {}, paused {} after input line {}{}", p.request, p.layer, where,
                             p.input_line, latency));
   }
+  for (const std::string& l : control.objects().summary()) diag.report(l);
   const std::string far_end = link.summary();
   if (!far_end.empty()) diag.report(far_end);
 }

@@ -44,7 +44,10 @@ void into_pause(const JournalContents& journal, ResumeStart& r) {
   ResumeStart::Paused paused;
   // Kept running: the lines of the block the printer took; a reset: those
   // the journal holds (the resume sequence takes the head where they left it).
-  paused.taken = (plan.condition == PrinterCondition::KeptRunning ? plan.entry + 1 : entries.size()) - stop;
+  // (gc-send's questions and pace probes among them, "ask", are none of the block's.)
+  const std::size_t through = plan.condition == PrinterCondition::KeptRunning ? plan.entry + 1 : entries.size();
+  paused.taken = 0;
+  for (std::size_t i = stop; i < through; ++i) paused.taken += entries[i].point.get("ask") == "1" ? 0 : 1;
   if (!read_machine_fields(entries[stop - 1].point, paused.at, problem))
     throw ResumeError(fmt::format("cannot resume: the journal's record of where the print paused is incomplete: {}",
                                   problem));
@@ -149,6 +152,11 @@ ResumeStart begin_resume(const ResumeSource& source, const ProbeResult& probe, S
   const JournalEntry& from = source.journal.entries[r.plan.entry];
   r.last = static_cast<long long>(from.n);
   r.point = from.point;
+  // The objects cancelled by the time gc-send stopped (the journal's last
+  // line's: a cancel asked after the command the print goes on after counts
+  // too) are left out from where the print goes on.
+  if (const std::string* cancelled = source.journal.entries.back().point.find("cancelled"))
+    r.point.set("cancelled", *cancelled);
   r.next = probe.findings.expected_line;
   if (r.plan.condition == PrinterCondition::Reset) {
     // Numbered on after every number the journal used: one names one command.

@@ -122,6 +122,7 @@ int SendSession::read_e_mode(EModeChoice choice, std::string_view name) {
 void SendSession::set_control(const PrintControlConfig& config, const std::string& control_path) {
   control_ = std::make_unique<PrintControl>(config, sender_, diag_, pipeline_.precision());
   if (resumed_layer_ > 0) control_->continue_in_layer(resumed_layer_);
+  if (line_base_ > 0) control_->objects().continue_from(printed_objects_.tracker());
   sender_.set_action_handler([this](std::string_view action) { control_->action(action, EventLoop::now()); });
   control_->on_status = [this] {
     if (progress_) progress_->print_line(snapshot());
@@ -181,6 +182,7 @@ void SendSession::skip_printed(std::uint64_t bytes, std::uint64_t hash_bytes, st
       auto printed = static_cast<std::size_t>(std::min<std::uint64_t>(bytes - done, got.size()));
       std::string_view part = got.substr(0, printed);
       markers.feed(part);
+      printed_objects_.feed(part);
       input_hash_.printed(part, hash_bytes);
       got.remove_prefix(printed);
     }
@@ -217,7 +219,7 @@ void SendSession::count_header() {
 
 void SendSession::run() {
   if (!control_) set_control(PrintControlConfig{}, std::string());
-  control_->add_stages(pipeline_);
+  control_->add_stages(pipeline_, line_base_, resumed_layer_);
   pipeline_.add(*this);
   count_header();
   input_watch_ = loop_.add_fd(input_fd_, POLLIN, [this](short) { read_input(); });
@@ -300,7 +302,7 @@ int SendSession::layers() const {
 void SendSession::start_swap(std::unique_ptr<JoinStream> next, int layers_done) {
   segments_.push_back(std::make_unique<Segment>(*this, std::move(next), layers_done, input_lines_));
   current_ = segments_.back().get();
-  control_->add_stages(current_->pipeline);
+  control_->add_stages(current_->pipeline, current_->line_offset);
   current_->pipeline.add(*current_);
   // The layers and time to come are the other file's: as far as known.
   total_layers_ = 0;
@@ -452,6 +454,8 @@ void SendSession::set_reconnect(const std::string& path, const PortOptions& opti
 }
 
 std::string_view SendSession::state_label() const {
+  if (sender_.state() == SenderState::Failed) return "failed";
+  if (sender_.emergency()) return "stopped";
   if (sender_.finished()) return "done";
   if (reconnecting()) return "reconnecting";
   return control_->state_label();
@@ -517,6 +521,7 @@ ProgressSnapshot SendSession::snapshot() const {
   s.eta = eta_.remaining(now, sender_.estimated_time(), control_->paused_seconds(now), s.percent, s.elapsed);
   s.speed = control_->speed();
   s.temperatures = sender_.temperatures();
+  s.objects = control_->objects().json();
   s.resets = static_cast<int>(st.resets);
   s.redone_mm = st.redone_mm;
   s.pauses = static_cast<int>(control_->pauses().size());

@@ -51,6 +51,14 @@ std::uint64_t SendJournal::offset_of(std::uint64_t line) const {
 }
 
 void SendJournal::numbered(const NumberedCommand& c) {
+  if (c.repeat && written_) {
+    // gc-send's question or pace probe: where the command before it left
+    // the print ("ask" tells it from a command).
+    point_.set("ask", "1");
+    writer_.sent(static_cast<std::uint64_t>(c.n), point_);
+    return;
+  }
+  point_.set("ask", "0");
   // Commands of the control's own (a pause block, a cancel's end) carry no
   // input line: they keep the position in the input of the line before.
   if (c.source_line != 0) {

@@ -17,7 +17,7 @@ InFlight::Answer InFlight::answer_to(const Response& r, bool numbered_oks) const
     // theirs (an earlier one's got lost), and a question left behind would
     // wait for an answer already taken.
     auto last = it;
-    while (last + 1 != entries_.end() && (last + 1)->number == kQuestion) ++last;
+    while (last + 1 != entries_.end() && (last + 1)->own == Own::Question) ++last;
     return {Kind::Through, static_cast<std::size_t>(last - entries_.begin()), static_cast<std::size_t>(last - it)};
   }
   if (numbered_oks) {
@@ -29,11 +29,11 @@ InFlight::Answer InFlight::answer_to(const Response& r, bool numbered_oks) const
     if (r.line >= 0) {
       std::size_t last = entries_.size();
       for (std::size_t i = 0; i < entries_.size(); ++i)
-        if (entries_[i].number >= 0 && entries_[i].number <= r.line) last = i;
+        if (entries_[i].number > 0 && entries_[i].number <= r.line) last = i;
       if (last == entries_.size()) return {};
       return {Kind::Through, last};
     }
-    auto it = std::find_if(entries_.begin(), entries_.end(), [](const Entry& e) { return e.number < 0; });
+    auto it = std::find_if(entries_.begin(), entries_.end(), [](const Entry& e) { return e.own != Own::None; });
     if (it == entries_.end()) return {};
     return {Kind::Question, static_cast<std::size_t>(it - entries_.begin())};
   }
@@ -72,8 +72,8 @@ std::size_t InFlight::drop_from(long long n) {
 
 void InFlight::count(const Entry& e, int sign) {
   auto add = [sign](std::size_t& n) { n = sign > 0 ? n + 1 : n - 1; };
-  if (e.number == kQuestion) add(counts_.questions);
-  if (e.number == kPaceProbe) add(counts_.probes);
+  if (e.own == Own::Question) add(counts_.questions);
+  if (e.own == Own::PaceProbe) add(counts_.probes);
   for (std::size_t bit = 0; bit < kMarks; ++bit)
     if (e.marks & (1u << bit)) add(marked_[bit]);
 }

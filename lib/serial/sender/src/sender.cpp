@@ -51,19 +51,19 @@ void Sender::begin_handshake(double now) {
     state_ = SenderState::Handshake;
     // Unnumbered: Marlin only checks numbers on lines that start with N, and
     // M110 N0 makes the next numbered line N1.
-    send_unnumbered(handshake_line(), false, false);
+    send_unnumbered(handshake_line());
   } else {
     // A resume: the numbering stays, the capabilities (and a simulated
     // printer's time scale) are asked again.
     state_ = SenderState::Capabilities;
-    send_unnumbered("M115", false, false);
+    send_unnumbered("M115");
   }
 }
 
 void Sender::continue_from(long long next, const MachineState& printer, const ResumeTrack& track,
                            std::uint64_t source_line, int layer) {
   next_number_ = next_send_ = next;
-  highest_sent_ = next - 1;
+  highest_sent_ = journaled_ = next - 1;
   last_acked_.number = next - 1;
   machine_ = printer;
   continuing_ = true;
@@ -97,9 +97,15 @@ void Sender::grow_ring() {
 
 void Sender::on_time(std::int64_t tag, double seconds) {
   // Final times arrive up to 16 moves after the line was queued, well within
-  // the history; anything older is no longer needed.
-  if (tag < std::max<long long>(1, next_send_ - kHistory) || tag >= next_number_) return;
-  Slot& s = slot(tag);
+  // the history; anything older is no longer needed. Tags rise with the
+  // numbers (a command taken back and numbered again gets a new one), and
+  // a line of the sender's own carries none.
+  const auto wanted = static_cast<std::uint64_t>(tag);
+  const long long oldest = std::max<long long>(1, next_send_ - kHistory);
+  long long n = next_number_ - 1;
+  while (n >= oldest && (slot(n).own != InFlight::Own::None || slot(n).tag > wanted)) --n;
+  if (n < oldest || slot(n).tag != wanted) return;
+  Slot& s = slot(n);
   if (!s.motion_final) {
     s.motion = 0;
     s.motion_final = true;
@@ -151,7 +157,8 @@ void Sender::enqueue(std::string_view command, std::uint64_t source_line, int la
   Move move = machine_.apply(line);
   s.at = {machine_.position[kX], machine_.position[kY], machine_.position[kZ]};
   track(s, line, move);
-  if (on_numbered_) on_numbered_({next_number_, source_line, layer, &machine_, &track_, restoring_, closing, s.drains});
+  s.closing = closing;
+  s.own = InFlight::Own::None;
   // Until the estimator's time is final (16 moves later), length / feed rate.
   s.motion = 0;
   s.motion_final = false;
@@ -162,7 +169,8 @@ void Sender::enqueue(std::string_view command, std::uint64_t source_line, int la
   s.instant = !s.move && (motion_command || config_.firmware->is_instant(line));
   s.nominal = s.move && move.feedrate > 0 ? length / (move.feedrate / 60) : 0;
   s.motion = s.nominal;
-  estimator_.set_tag(next_number_);
+  s.tag = next_tag_++;
+  estimator_.set_tag(static_cast<std::int64_t>(s.tag));
   ++next_number_;
   estimator_.add(line, move);
 }
@@ -208,27 +216,95 @@ void Sender::pump(double now) {
   check_done(now);
 }
 
-void Sender::push_flight(long long number, std::size_t bytes, bool temperature_query) {
+void Sender::push_flight(long long number, std::size_t bytes, bool temperature_query, InFlight::Own own) {
   out_total_ += bytes;
   std::uint8_t marks = 0;
-  if (number > 0) {
+  if (number > 0 && own == InFlight::Own::None) {
     const Slot& s = slot(number);
     marks = static_cast<std::uint8_t>((s.long_running ? InFlight::kLongRunning : 0) |
                                       (s.unbounded ? InFlight::kUnbounded : 0) |
                                       (s.silent_wait ? InFlight::kSilentWait : 0) | (s.move ? InFlight::kMove : 0));
   }
-  flight_.push(number, bytes, temperature_query, out_total_, marks);
+  flight_.push(number, bytes, temperature_query, out_total_, marks, own);
 }
 
-void Sender::send_unnumbered(std::string_view command, bool temperature_query, bool track) {
+// The handshake's lines (M110, M115) and a reconnect's M114: before the
+// numbering is settled, and answered before anything else goes.
+void Sender::send_unnumbered(std::string_view command) {
   out_ += command;
   out_ += '\n';
   if (trace_) log(LogLevel::Trace, 0, fmt::format("-> {}", command));
-  if (track) {
-    push_flight(InFlight::kQuestion, command.size() + 1, temperature_query);
-  } else {
-    out_total_ += command.size() + 1;
+  out_total_ += command.size() + 1;
+}
+
+// The commands numbered but not sent yet (a move the pacer holds, a block
+// of the control's) move up one number; their journal records are written
+// when they go out, so nothing but the estimator's tags knew the old ones.
+long long Sender::make_room_for_own() {
+  const long long k = next_send_;
+  if (next_number_ + 1 - std::max<long long>(1, next_send_ - kHistory) >= static_cast<long long>(ring_.size()))
+    grow_ring();
+  const long long prev = k < next_number_ ? slot(k).prev : last_enqueued_;
+  for (long long n = next_number_; n > k; --n) {
+    Slot& s = slot(n);
+    s = std::move(slot(n - 1));
+    std::string command(command_of_numbered(s.wire));
+    s.wire.clear();
+    append_numbered_line(s.wire, n, command);
+    if (s.prev >= k) ++s.prev;
   }
+  if (last_enqueued_ >= k) ++last_enqueued_;
+  ++next_number_;
+  // Lines sent already and refused since (a rewind to k): they go out
+  // again under their new numbers, and are journaled again so.
+  if (highest_sent_ >= k) ++highest_sent_;
+  journaled_ = std::min(journaled_, k - 1);
+  return prev;
+}
+
+void Sender::send_own(InFlight::Own kind, double now) {
+  const long long k = next_send_;
+  const long long prev = make_room_for_own();
+  Slot& s = slot(k);
+  const Slot& before = prev > 0 && (in_history(prev) || prev == base_number_) ? held(prev) : Slot();
+  s.source_line = before.source_line;
+  s.layer = before.layer;
+  s.at = before.at;
+  s.after = before.after;
+  s.track = before.track;
+  s.prev = prev;
+  s.restore = 0;
+  s.long_running = s.unbounded = s.silent_wait = s.move = s.drains = s.closing = false;
+  s.temperature_query = kind == InFlight::Own::Question;
+  // M105 is answered at once; the probe waits for a planner block.
+  s.instant = kind == InFlight::Own::Question;
+  s.motion = s.nominal = 0;
+  s.motion_final = true;
+  s.own = kind;
+  s.tag = 0;
+  s.wire.clear();
+  append_numbered_line(s.wire, k, kind == InFlight::Own::Question ? kProbe : kPaceProbe);
+  out_ += s.wire;
+  if (trace_)
+    log(LogLevel::Trace, 0, fmt::format("-> {} @{:.6f}{}", std::string_view(s.wire).substr(0, s.wire.size() - 1), now,
+                                        kind == InFlight::Own::PaceProbe ? " (pace probe)" : ""));
+  push_flight(k, s.wire.size(), s.temperature_query, kind);
+  journal_first_send(k);
+  highest_sent_ = std::max(highest_sent_, k);
+  if (flight_.lines() == 1) last_rx_ = std::max(last_rx_, now);
+  ++next_send_;
+}
+
+// The journal's record of a line, written as it first goes out (before its
+// bytes can reach the port): a line of the sender's own repeats the point
+// of the command before it.
+void Sender::journal_first_send(long long number) {
+  if (number <= journaled_) return;
+  journaled_ = number;
+  if (!on_numbered_) return;
+  const Slot& s = slot(number);
+  on_numbered_({number, s.source_line, s.layer, &s.after, &s.track, s.restore, s.closing, s.drains,
+                s.own != InFlight::Own::None});
 }
 
 void Sender::written(std::size_t n, double now) {
@@ -260,7 +336,7 @@ void Sender::fill(double now) {
   }
   // Room is kept in the printer's buffer for an M105, which goes out
   // whenever an answer is overdue.
-  std::size_t reserve = flight_.asking() ? 0 : kProbe.size() + 1;
+  std::size_t reserve = flight_.asking() ? 0 : own_line_bytes(kProbe);
   for (;;) {
     if (input_done_ && !final_queued_ && next_send_ == next_number_ && config_.finish_with_m400 && next_number_ > 1) {
       final_queued_ = true;
@@ -278,9 +354,10 @@ void Sender::fill(double now) {
     out_ += s.wire;
     if (trace_)
       log(LogLevel::Trace, 0, fmt::format("-> {} @{:.6f}", std::string_view(s.wire).substr(0, s.wire.size() - 1), now));
-    push_flight(next_send_, s.wire.size(), s.temperature_query);
+    push_flight(next_send_, s.wire.size(), s.temperature_query, s.own);
     idle_hint_ = false;  // "wait" was about what went before
-    if (pacing() && s.move && pacer_.probe_ahead(clock_.planner_blocks())) pace_probe(now, reserve);
+    const bool probe_ahead = pacing() && s.move && pacer_.probe_ahead(clock_.planner_blocks());
+    journal_first_send(next_send_);
     if (next_send_ > highest_sent_) {
       highest_sent_ = next_send_;
       ++stats_.lines;
@@ -291,6 +368,8 @@ void Sender::fill(double now) {
     }
     if (flight_.lines() == 1) last_rx_ = std::max(last_rx_, now);  // the timeout runs from the first line in flight
     ++next_send_;
+    // (Numbered after the move, as it goes after it.)
+    if (probe_ahead) pace_probe(now, reserve);
   }
   check_done(now);
 }
@@ -312,15 +391,20 @@ void Sender::check_done(double now) {
 
 void Sender::acknowledge_front(double now, int planner_free) {
   const InFlight::Entry f = flight_.pop_front();
-  if (f.number < 0) {
+  if (f.own != InFlight::Own::None) {
     clock_.answered(0, now);
-    if (f.number == InFlight::kPaceProbe && pacing())
+    if (f.own == InFlight::Own::PaceProbe && pacing())
       pacer_.probe_answered(now, f.arrival == InFlight::kNotArrived ? Pacer::kUnknown : f.arrival,
                             clock_.planner_blocks());
+    if (f.number > last_acked_.number) {
+      last_acked_.number = f.number;
+      if (on_acknowledged_) on_acknowledged_(f.number);
+    }
     return;
   }
   const Slot& s = slot(f.number);
   clock_.answered(s.move ? s.motion : 0, now, s.move ? s.nominal : 0);
+  if (s.move) queued_end_ = std::max(queued_end_, now) + s.motion / config_.time_scale;
   planned(s, f, now, planner_free);
   if (f.number > last_acked_.number) {
     last_acked_.number = f.number;
@@ -362,7 +446,7 @@ void Sender::on_ok(const Response& r, double now) {
   // The answer of a question taken with an earlier one's (InFlight::Answer::
   // written_off): taken for a newer question, it would acknowledge lines
   // the printer has not run yet (a firmware whose oks wait, as Klipper's
-  // while 2 s of motion are queued, draws several questions in a row).
+  // while about 1 s of motion is queued, draws several questions in a row).
   if (r.has_temperature && written_off_ > 0) {
     --written_off_;
     ++stats_.stray_oks;
@@ -390,7 +474,7 @@ bool Sender::answers_handshake(const Response& r, double now) {
   if (state_ == SenderState::Handshake) {
     state_ = SenderState::Capabilities;
     handshake_retry_ = now;
-    send_unnumbered("M115", false, false);
+    send_unnumbered("M115");
     return true;
   }
   if (state_ != SenderState::Capabilities) return false;
@@ -432,6 +516,12 @@ void Sender::on_resend(long long n, double now) {
                      highest_sent_));
     return;
   }
+  // A question of ours numbered n, sent while the rewind settled (after the
+  // stale lines): a request for n now is its own refusal, not a stale one.
+  if (resend_.settling() && std::any_of(flight_.begin(), flight_.end(), [n](const InFlight::Entry& e) {
+        return e.own != InFlight::Own::None && e.number >= n;
+      }))
+    resend_.settled();
   switch (resend_.request(n, config_.max_resends)) {
     case ResendState::Verdict::Repeat: ++stats_.duplicate_resends; return;
     case ResendState::Verdict::TooMany:
@@ -619,7 +709,7 @@ void Sender::on_start(std::string_view text, double now) {
     // (After M110 was answered: it restarted again, and forgot it.)
     state_ = SenderState::Handshake;
     caps_answered_ = false;
-    send_unnumbered(handshake_line(), false, false);
+    send_unnumbered(handshake_line());
   } else if (state_ == SenderState::Printing || handshaking) {
     // (Handshaking here: a resume's M115 to a printer that had kept running
     // the print; it holds the print no longer.)
@@ -658,19 +748,21 @@ bool Sender::paced(double now) {
 
 // Held back by the pacer: a move of no length asks the printer whether its
 // planner really is full (pacer.hpp), on a firmware that holds it until it
-// has a block free. It holds a place in the printer's queue like a line.
-// It has no number and no checksum: on a link that has garbled a line (a
-// resend asked) none goes, as its answer could be taken for a line's.
+// has a block free. It holds a place in the printer's queue like a line,
+// and is numbered and checksummed like one: a garbled probe is refused and
+// sent again, never run as another command (an unnumbered "G1" with one
+// bit changed is "E1"; two make it "M1", a wait for the user).
 void Sender::pace_probe(double now, std::size_t reserve) {
-  if (!config_.firmware->empty_move_waits || stats_.resend_requests > 0 || stats_.errors > 0 || flight_.probing())
-    return;
+  if (!config_.firmware->empty_move_waits || flight_.probing() || resend_.settling()) return;
   if (!pacer_.probe_wanted(clock_.planner_blocks())) return;
-  if (!flow_.may_send(flight_.lines(), flight_.bytes() + reserve, kPaceProbe.size() + 1)) return;
-  out_ += kPaceProbe;
-  out_ += '\n';
-  if (trace_) log(LogLevel::Trace, 0, fmt::format("-> {} @{:.6f} (pace probe)", kPaceProbe, now));
-  push_flight(InFlight::kPaceProbe, kPaceProbe.size() + 1, false);
+  if (!flow_.may_send(flight_.lines(), flight_.bytes() + reserve, own_line_bytes(kPaceProbe))) return;
+  send_own(InFlight::Own::PaceProbe, now);
   ++stats_.pace_probes;
+}
+
+// The bytes of a line of the sender's own, numbered next.
+std::size_t Sender::own_line_bytes(std::string_view command) const {
+  return command.size() + 3 + static_cast<std::size_t>(std::to_string(next_send_).size()) + 4;
 }
 
 void Sender::planned(const Slot& s, const InFlight::Entry& f, double now, int planner_free) {
@@ -695,18 +787,18 @@ double Sender::overdue_at() const {
   // before it). With no line in flight there is nothing to ask about. (A
   // pace probe is a line here: it waits for a block as a move does.)
   std::size_t first = 0;
-  while (first < flight_.size() && flight_[first].number == InFlight::kQuestion) ++first;
+  while (first < flight_.size() && flight_[first].own == InFlight::Own::Question) ++first;
   if (first == flight_.size()) return kNever;
   std::size_t k = first;
   for (std::size_t i = first; i < flight_.size(); ++i)
-    if (flight_[i].number == InFlight::kQuestion) k = i;
+    if (flight_[i].own == InFlight::Own::Question) k = i;
   if (flight_[k].arrival == InFlight::kNotArrived) return kNever;
   AnswerClock::Wait wait;
   // (Questions before the first line are left over from before and have no
   // bearing on when it is answered.)
   for (std::size_t j = first; j <= k; ++j) {
-    if (flight_[j].number == InFlight::kPaceProbe) ++wait.moves;
-    if (flight_[j].number < 0) continue;
+    if (flight_[j].own == InFlight::Own::PaceProbe) ++wait.moves;
+    if (flight_[j].own != InFlight::Own::None) continue;
     const Slot& s = slot(flight_[j].number);
     wait.unbounded = wait.unbounded || s.unbounded;
     if (s.move) ++wait.moves;
@@ -717,11 +809,20 @@ double Sender::overdue_at() const {
   }
   // Asked already with a long command ahead: it answers when done, and its
   // keepalives or --timeout tell how long that is.
-  if (flight_[k].number == InFlight::kQuestion && wait.unbounded) return kNever;
+  if (flight_[k].own == InFlight::Own::Question && wait.unbounded) return kNever;
   // A firmware that says nothing during it (Klipper's G28): nothing to learn
   // by asking before --timeout.
   if (wait.unbounded && !config_.firmware->busy_keepalive) return kNever;
   double due = clock_.due(flight_[k].arrival, wait);
+  if (config_.firmware->ok_when_queued) {
+    // Klipper holds a move's ok until less than about a second of motion is
+    // queued: the motion of the moves it answered and of those ahead in
+    // flight, less that second (and, as estimates run short, the move's own).
+    const InFlight::Entry& e = flight_[k];
+    const double own = e.own == InFlight::Own::None && slot(e.number).move ? slot(e.number).motion : 0;
+    const double held = std::max(queued_end_ - kQueuedHold / config_.time_scale, e.arrival);
+    due = std::max(due, held + (kQueuedHold + wait.motion + own) / config_.time_scale + clock_.margin());
+  }
   // A question without an answer (or one that did not fit) waits twice as
   // long as the one before.
   return probes_.when(due, clock_.margin());
@@ -757,7 +858,11 @@ void Sender::probe(double now, bool silent) {
   // Earlier questions stay in flight: their answers may still come, and
   // "ok T:" answers the oldest. Each goes out only if it fits into the
   // printer's buffer on top of everything believed in it.
-  if (flight_.bytes() + kProbe.size() + 1 >= static_cast<std::size_t>(flow_.rx_buffer())) return;
+  if (flight_.bytes() + own_line_bytes(kProbe) >= static_cast<std::size_t>(flow_.rx_buffer())) return;
+  // After a rewind to n it is numbered n, so it waits until the lines that
+  // were behind the bad one have reached the printer and been refused
+  // (each empties its buffer, and would take the question with it).
+  if (resend_.settling() && !resend_.quiet(now, last_any_rx_)) return;
   if (!silent) {
     ++stats_.probes;
     long long n = flight_.empty() ? -1 : flight_.front().number;
@@ -765,7 +870,8 @@ void Sender::probe(double now, bool silent) {
         n > 0 ? fmt::format("the answer to N{} is overdue; asking with M105", n)
               : std::string("an answer is overdue; asking with M105"));
   }
-  send_unnumbered(kProbe, true, true);
+  ++stats_.polls;
+  send_own(InFlight::Own::Question, now);
 }
 
 void Sender::on_timer(double now) {
@@ -821,7 +927,7 @@ void Sender::handshake_timer(double now) {
   }
   if (now >= handshake_retry_ + std::min(1.0, config_.timeout / 3)) {
     handshake_retry_ = now;
-    send_unnumbered(state_ == SenderState::Handshake ? handshake_line() : std::string("M115"), false, false);
+    send_unnumbered(state_ == SenderState::Handshake ? handshake_line() : std::string("M115"));
   }
 }
 
@@ -854,6 +960,8 @@ void Sender::emergency_stop() {
 void Sender::fail(std::string message) {
   if (state_ == SenderState::Failed) return;
   state_ = SenderState::Failed;
+  // The print ran until the last answer (the summary's time and rate).
+  if (stats_.print_start >= 0 && stats_.print_end < stats_.print_start) stats_.print_end = last_any_rx_;
   failure_ = std::move(message);
 }
 

@@ -125,7 +125,7 @@ void Sender::relink_ok(double now) {
   }
   if (!position_asked_) {
     position_asked_ = true;
-    send_unnumbered("M114", false, false);
+    send_unnumbered("M114");
   }
 }
 

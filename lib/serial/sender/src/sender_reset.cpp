@@ -217,7 +217,7 @@ void Sender::continue_after_reset(long long last_number, long long restore, int 
                                   const std::vector<std::string>& sequence, const MachineState& target,
                                   const ResumeTrack& track, std::uint64_t source_line) {
   next_number_ = next_send_ = last_number + 1;
-  highest_sent_ = handshake_number_ = last_number;
+  highest_sent_ = handshake_number_ = journaled_ = last_number;
   last_acked_.number = last_number;
   first_held_ = last_number + 1;
   last_enqueued_ = restore;  // the sequence follows the command it goes back to

@@ -38,7 +38,7 @@ class KlipperDialect final : public ReplyDialect {
       DialectBehaviour k;
       k.checks_line_numbers = false;
       k.busy_keepalive = false;
-      k.buffer_seconds = 2.0;  // toolhead.py buffer_time_high
+      k.buffer_seconds = 1.0;  // measured on klippy: a move's ok waits once about 1 s of motion is queued
       k.reads_everything = true;
       k.moves_need_homing = true;
       k.shutdown_answers = true;

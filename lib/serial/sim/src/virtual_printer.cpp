@@ -67,7 +67,7 @@ double VirtualPrinter::next_event() const {
     default: break;
   }
   if (wait_ != Wait::None && wait_ != Wait::Heating) t = std::min(t, next_busy_);
-  t = std::min({t, next_report_, idle_wait_at()});
+  t = std::min({t, next_report_, idle_wait_at(), held_deadline()});
   return std::min({t, outage_.up_at(), schedule_.next_time()});
 }
 
@@ -81,7 +81,7 @@ void VirtualPrinter::advance(double now) {
         t_fw = std::min(t_fw, wait_until_);
       if (wait_ == Wait::Heating) t_fw = std::min(t_fw, heat_done_time());
       if (wait_ != Wait::None && wait_ != Wait::Heating) t_fw = std::min(t_fw, next_busy_);
-      t_fw = std::min({t_fw, next_report_, idle_wait_at(), outage_.up_at(), schedule_.next_time()});
+      t_fw = std::min({t_fw, next_report_, idle_wait_at(), outage_.up_at(), schedule_.next_time(), held_deadline()});
     }
     double t = std::min(t_wire, t_fw);
     if (t > now || t == kNever) break;
@@ -107,6 +107,12 @@ void VirtualPrinter::advance(double now) {
       next_idle_wait_ = t + config_.idle_wait;
     }
     if (outage_.up_at() <= t) link_up(t);
+    if (held_deadline() <= t) {
+      // The write timed out: the rest of it is gone.
+      stats_.overrun_bytes += held_.size();
+      stats_.timed_out_bytes += held_.size();
+      held_.clear();
+    }
     for (ScheduledFault f; schedule_.take_due(t, f);) fire(f, t);
     run(t);
   }
@@ -132,7 +138,16 @@ void VirtualPrinter::arrive(char c, double t) {
   }
   // Marlin keeps one slot of its ring buffer free.
   if (!dialect_->behaviour().reads_everything &&
-      rx_.size() - rx_head_ >= static_cast<std::size_t>(config_.rx_buffer - 1)) {
+      (!held_.empty() || rx_.size() - rx_head_ >= static_cast<std::size_t>(config_.rx_buffer - 1))) {
+    if (config_.write_timeout > 0) {
+      // The writer waits for room (OctoPrint's virtual printer).
+      if (held_.empty()) {
+        held_since_ = t;
+        ++stats_.held_writes;
+      }
+      held_ += c;
+      return;
+    }
     ++stats_.overrun_bytes;
     return;
   }
@@ -180,8 +195,23 @@ void VirtualPrinter::run(double t) {
   }
 }
 
+// A waiting write goes on as the buffer has room.
+void VirtualPrinter::admit_held() {
+  if (held_.empty()) return;
+  std::size_t room = static_cast<std::size_t>(config_.rx_buffer - 1) - (rx_.size() - rx_head_);
+  std::size_t n = std::min(room, held_.size());
+  rx_.append(held_, 0, n);
+  held_.erase(0, n);
+  held_since_ = now_;
+}
+
+double VirtualPrinter::held_deadline() const {
+  return held_.empty() ? kNever : held_since_ + config_.write_timeout;
+}
+
 void VirtualPrinter::parse_rx() {
   // Marlin's get_serial_commands(): read while the queue has room.
+  admit_held();
   const bool everything = dialect_->behaviour().reads_everything;
   while ((everything || queue_.size() < static_cast<std::size_t>(config_.queue)) && rx_head_ < rx_.size() &&
          !halted_) {
@@ -204,6 +234,7 @@ void VirtualPrinter::parse_rx() {
     rx_.clear();
     rx_head_ = 0;
   }
+  admit_held();
 }
 
 void VirtualPrinter::reject(LineFault fault) {
@@ -261,6 +292,7 @@ bool VirtualPrinter::process_line(std::string& line) {
       reject(LineFault::Checksum);
       return false;
     }
+    if (scripted_error(n)) return false;
     last_n_ = n;
     number = n;
     ++stats_.accepted_lines;
@@ -271,6 +303,21 @@ bool VirtualPrinter::process_line(std::string& line) {
     return false;
   }
   push_command(text, number);
+  return true;
+}
+
+// OctoPrint's virtual printer refuses lines 100, 105, 110 and 115 once each
+// (its "simulated errors"): a resend, one whose ok is lost, a line taken
+// for one without a number, a checksum mismatch.
+bool VirtualPrinter::scripted_error(long long n) {
+  static constexpr long long kLines[] = {100, 105, 110, 115};
+  if (!config_.scripted_errors || scripted_fired_ >= 4 || n != kLines[scripted_fired_]) return false;
+  const int which = scripted_fired_++;
+  ++stats_.scripted_errors;
+  const bool resend_ok = config_.resend_ok;
+  if (which == 1) config_.resend_ok = false;
+  reject(which == 2 ? LineFault::NoLineNumber : LineFault::Checksum);
+  config_.resend_ok = resend_ok;
   return true;
 }
 

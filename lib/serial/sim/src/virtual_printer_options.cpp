@@ -71,6 +71,17 @@ void parse_virtual_options(std::string_view text, VirtualPrinterConfig& c) {
       c.queue = static_cast<int>(count(1));
     } else if (key == "rx") {
       c.rx_buffer = static_cast<int>(count(16));
+    } else if (key == "write-timeout") {
+      c.write_timeout = parse_value(key, value);
+    } else if (key == "scripted-errors") {
+      c.scripted_errors = parse_flag(key, value);
+    } else if (key == "octoprint" && parse_flag(key, value)) {
+      // OctoPrint's virtual printer with its default settings.
+      c.rx_buffer = 64;
+      c.write_timeout = 10;
+      c.scripted_errors = true;
+      c.instant_moves = true;
+    } else if (key == "octoprint") {
     } else if (key == "max-line") {
       c.max_line = static_cast<int>(count(16));
     } else if (key == "planner") {

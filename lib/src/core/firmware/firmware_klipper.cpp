@@ -32,7 +32,7 @@ constexpr FirmwareFlavor klipper() {
   f.checks_line_numbers = false;     // "N12" and "*34" are read and ignored; M110 does nothing
   f.advanced_ok_possible = false;
   f.busy_keepalive = false;
-  f.ok_when_queued = true;           // toolhead buffer_time_high: ~2 s of motion queued before an ok waits
+  f.ok_when_queued = true;           // an ok waits once about 1 s of motion is queued (measured on klippy)
   f.reports_own_pause = false;
   return f;
 }

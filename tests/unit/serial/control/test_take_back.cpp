@@ -1,5 +1,5 @@
 // The take-back ledger (gcode/serial/control/take_back.hpp): what the
-// sender has sent can no longer be taken back, nor anything over lines of
+// sender has sent (all but the newest it holds unsent) can no longer be taken back, nor anything over lines of
 // gc-send's own; what is taken back comes oldest first.
 #include <catch2/catch.hpp>
 
@@ -24,7 +24,7 @@ TEST_CASE("take back: only the newest unsent commands, oldest first", "[serial][
   TakeBackLedger ledger;
   for (int i = 1; i <= 3; ++i) ledger.handed(test_take_back::command(i, 10 + i));
   CHECK(ledger.size() == 3);
-  ledger.sent_through(1);  // command 1 went out: no longer takeable
+  ledger.keep_unsent(2);  // the sender holds two unsent: command 1 went out, no longer takeable
   CHECK(ledger.size() == 2);
   CHECK(ledger.can_take_back(2, 2));
   CHECK_FALSE(ledger.can_take_back(2, 1));  // the sender holds only one unsent

@@ -109,8 +109,9 @@ TEST_CASE("send session: every command once, in order, nothing else", "[serial][
   CHECK(expected == std::vector<std::string>{"G28", "G1 X10 Y5 F3000", "G1 Z0.2", "G1 X20 Y5 E1", "G1 Z0.4",
                                              "G1 X20 Y20 E2", "M84"});
   expected.push_back("M400");  // the sender waits for the moves to end
+  gctest::drop_own_lines(r.log, expected);
   CHECK(r.log.commands == expected);
-  for (std::size_t i = 0; i < r.log.numbers.size(); ++i) CHECK(r.log.numbers[i] == static_cast<long long>(i + 1));
+  CHECK(gctest::numbers_rise(r.log.numbers));
   CHECK(r.printer.checksum_errors == 0);
   CHECK(r.printer.line_number_errors == 0);
 }
@@ -123,10 +124,13 @@ TEST_CASE("send session: a long file through a small window, faults and all", "[
   c.drop_ok = 0.01;
   Sent r = send(text, c);
   CHECK(r.state == SenderState::Done);
+  std::vector<std::string> expected;
+  for (const gctest::SentCommand& s : gctest::commands_of(text)) expected.push_back(s.text);
+  expected.push_back("M400");
+  gctest::drop_own_lines(r.log, expected);
   REQUIRE(r.log.commands.size() == 3003);
-  CHECK(r.log.commands[2] == "G1 X0 Y0 F6000");
-  CHECK(r.log.commands[3001] == "G1 X199 Y3 F6000");
-  for (std::size_t i = 0; i < r.log.numbers.size(); ++i) REQUIRE(r.log.numbers[i] == static_cast<long long>(i + 1));
+  CHECK(r.log.commands == expected);
+  CHECK(gctest::numbers_rise(r.log.numbers));
   CHECK(r.printer.corrupted > 0);
   CHECK(r.input_lines == 3002);
 }

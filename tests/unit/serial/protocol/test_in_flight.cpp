@@ -10,12 +10,12 @@ using AnswerKind = InFlight::Answer::Kind;
 
 namespace {
 
-// Lines 1..n of 10 bytes each, then `questions` M105s of the sender's.
+// Lines 1..n of 10 bytes each, then `questions` M105s of the sender's (numbered on).
 InFlight lines(int n, int questions = 0) {
   InFlight f;
   std::uint64_t end = 0;
   for (int i = 1; i <= n; ++i) f.push(i, 10, false, end += 10);
-  for (int i = 0; i < questions; ++i) f.push(-1, 5, true, end += 5);
+  for (int i = 0; i < questions; ++i) f.push(n + 1 + i, 5, true, end += 5, 0, InFlight::Own::Question);
   return f;
 }
 
@@ -54,7 +54,7 @@ TEST_CASE("in flight: with ADVANCED_OK, ok N<n> answers through line n, an ok wi
   InFlight::Answer a = f.answer_to(parse_response("ok N2 P15 B3"), true);
   CHECK(a.kind == AnswerKind::Through);
   CHECK(a.index == 1);
-  CHECK(f.answer_to(parse_response("ok N9 P15 B3"), true).index == 3);  // everything numbered sent before it
+  CHECK(f.answer_to(parse_response("ok N9 P15 B3"), true).index == 4);  // everything sent before it, the question too
   a = f.answer_to(parse_response("ok"), true);
   CHECK(a.kind == AnswerKind::Question);
   CHECK(a.index == 4);
@@ -97,8 +97,8 @@ TEST_CASE("in flight: the marked lines, questions and probes are counted as entr
       REQUIRE(f.marked(m) == walked(f, m));
     std::size_t questions = 0, probes = 0;
     for (const InFlight::Entry& e : f) {
-      questions += e.number == InFlight::kQuestion;
-      probes += e.number == InFlight::kPaceProbe;
+      questions += e.own == InFlight::Own::Question;
+      probes += e.own == InFlight::Own::PaceProbe;
     }
     REQUIRE(f.lines() == f.size() - questions);
     REQUIRE(f.asking() == (questions > 0));
@@ -108,10 +108,10 @@ TEST_CASE("in flight: the marked lines, questions and probes are counted as entr
   std::uint64_t end = 0;
   f.push(1, 10, false, end += 10, InFlight::kMove);
   f.push(2, 10, false, end += 10, InFlight::kLongRunning | InFlight::kUnbounded);
-  f.push(InFlight::kPaceProbe, 4, false, end += 4);
-  f.push(3, 10, false, end += 10, InFlight::kSilentWait);
-  f.push(InFlight::kQuestion, 5, true, end += 5);
-  f.push(4, 10, false, end += 10, InFlight::kMove);
+  f.push(3, 4, false, end += 4, 0, InFlight::Own::PaceProbe);
+  f.push(4, 10, false, end += 10, InFlight::kSilentWait);
+  f.push(5, 5, true, end += 5, 0, InFlight::Own::Question);
+  f.push(6, 10, false, end += 10, InFlight::kMove);
   agrees(f);
   CHECK(f.marked(InFlight::kMove) == 2);
   CHECK(f.marked(InFlight::kLongRunning) == 1);
@@ -121,7 +121,7 @@ TEST_CASE("in flight: the marked lines, questions and probes are counted as entr
   f.erase(1);  // the probe
   agrees(f);
   CHECK_FALSE(f.probing());
-  CHECK(f.drop_from(3) == 25);  // line 3, the question behind it and line 4
+  CHECK(f.drop_from(4) == 25);  // line 4, the question behind it and line 6
   agrees(f);
   CHECK(f.marked(InFlight::kSilentWait) == 0);
   CHECK(f.marked(InFlight::kMove) == 0);

@@ -59,7 +59,7 @@ TEST_CASE("virtual Klipper: no greeting, numbers ignored, unknown commands and m
                                "ok T:20.0 /0.0 B:20.0 /0.0", "X:0.000 Y:0.000 Z:0.000 E:0.000", "ok"});
 }
 
-TEST_CASE("virtual Klipper: moves answered at once until 2 s of motion are queued, no busy while homing",
+TEST_CASE("virtual Klipper: moves answered at once until about 1 s of motion is queued, no busy while homing",
           "[serial][dialect]") {
   VirtualPrinterConfig c = flavour("klipper");
   c.planner = 2;  // Marlin's planner size plays no part
@@ -67,11 +67,13 @@ TEST_CASE("virtual Klipper: moves answered at once until 2 s of motion are queue
   p.receive("G28\n", 0);
   Lines homed = answers(p, 4);  // 3 s of homing, not a word until its ok
   CHECK(homed == Lines{"ok"});
-  // Six moves of 0.5 s each (10 mm at 1200 mm/min): five are answered at
-  // once (up to 2 s queued), the sixth once the first has run.
+  // Six moves of 0.5 s each (10 mm at 1200 mm/min): three are answered at
+  // once (up to 1 s queued, as klippy measured), the fourth once the first
+  // has run, then one each half second.
   for (int i = 1; i <= 6; ++i) p.receive("G1 X" + std::to_string(10 * i) + " F1200\n", 4);
-  CHECK(answers(p, 4.01).size() == 5);
+  CHECK(answers(p, 4.01).size() == 3);
   CHECK(answers(p, 4.6).size() == 1);
+  CHECK(answers(p, 5.6).size() == 2);
 }
 
 TEST_CASE("virtual Klipper: M112 shuts it down, every command refused with its ok until FIRMWARE_RESTART",

@@ -28,6 +28,10 @@
 // whatever the file does around them (gc-pause-at writes its park and
 // return there) is sent as it is; the host only holds the lines after it.
 //
+// cancel object ID|NAME  the object is left out from the next line on, also
+//            in the middle of its block (object_cancel.hpp), and the print
+//            goes on with the others; `objects` lists them.
+//
 // The printer's own //action:pause (its pause button with host actions) is a
 // `pause`, //action:resume a `resume`, //action:cancel a `cancel`.
 #include <cstddef>
@@ -44,6 +48,7 @@
 #include "gcode/core/line_builder.hpp"
 #include "gcode/pipeline/pipeline.hpp"
 #include "gcode/serial/control/control_verbs.hpp"
+#include "gcode/serial/control/object_cancel.hpp"
 #include "gcode/serial/control/pause_log.hpp"
 #include "gcode/serial/control/pause_reentry.hpp"
 #include "gcode/serial/control/take_back.hpp"
@@ -65,6 +70,7 @@ struct PrintControlConfig {
   std::vector<int> pause_on;    // M numbers handled as host pauses, not sent
   std::string cancel_gcode = "M104 S0\nM140 S0\nM107\nM84";  // after the park of a cancel
   SeamOptions seam;             // the way onto a swapped-in file
+  std::vector<std::string> exclude;  // --exclude: objects left out from the start
 };
 
 enum class PrintState : std::uint8_t { Printing, Pausing, Paused, Cancelling };
@@ -84,9 +90,11 @@ class PrintControl {
  public:
   PrintControl(const PrintControlConfig& config, Sender& sender, Diagnostics& diagnostics, const Precision& precision);
 
-  // The speed stages (`speed F`, the rush), to be added to the pipeline
-  // before the sending stage, in this order.
-  void add_stages(Pipeline& pipeline);
+  // The object excluder and the speed stages (`speed F`, the rush), to be
+  // added to the pipeline before the sending stage, in this order.
+  // `line_offset`: input lines before the pipeline's first (a resume, a swap);
+  // `resumed_layer`: the layer a resume's pipeline starts inside (0: none).
+  void add_stages(Pipeline& pipeline, std::uint64_t line_offset = 0, int resumed_layer = 0);
   void set_probe(MotionProbe probe) { probe_ = std::move(probe); }
 
   // Every call that can start or end a pause is given `now`, the caller's
@@ -130,6 +138,9 @@ class PrintControl {
   std::function<void(std::unique_ptr<JoinStream> next, int layers_done)> on_swap;
   const SeamOptions& seam_options() const { return config_.seam; }
   std::uint64_t swaps() const { return swaps_; }
+  // The objects cancelled (`cancel object`, --exclude, the journal's).
+  ObjectCancel& objects() { return objects_; }
+  const ObjectCancel& objects() const { return objects_; }
   // gc-send --resume of a print that stood paused (pause_reentry.hpp):
   // the printer stands `parked` (the journal's state after the pause block
   // and anything typed), the print stopped at `at` (with `retracted` mm of
@@ -210,6 +221,7 @@ class PrintControl {
   const Precision& precision_;
   SpeedStage user_speed_;
   SpeedStage rush_;
+  ObjectCancel objects_;
   MotionProbe probe_;
   double now_ = 0;  // the `now` of the call being handled
 

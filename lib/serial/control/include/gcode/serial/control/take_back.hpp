@@ -7,7 +7,7 @@
 // stream goes on from the state before the first of them.
 //
 // Two rules keep it honest: what the sender has sent can no longer be taken
-// back (sent_through), and nothing can be taken back over lines of gc-send's
+// back (keep_unsent), and nothing can be taken back over lines of gc-send's
 // own (own_lines), whose effect on the stream the ledger does not know.
 #include <cstddef>
 #include <cstdint>
@@ -31,8 +31,10 @@ class TakeBackLedger {
 
   // A command of the file went to the sender.
   void handed(Entry entry) { entries_.push_back(std::move(entry)); }
-  // The sender has sent every line up to number `sent`.
-  void sent_through(long long sent);
+  // The sender still holds `unsent` commands unsent, the newest it was
+  // handed: every entry older than those has gone out. (By count, not by
+  // number: a line of the sender's own moves unsent numbers up.)
+  void keep_unsent(std::size_t unsent);
   // Lines of gc-send's own went to the sender after input line `last_source`.
   void own_lines(std::uint64_t last_source);
 

@@ -29,6 +29,7 @@ struct ProgressSnapshot {
   int last_paused_before = 0;   // the layer it paused before (0: mid-layer)
   int resets = 0;               // printer resets the print came back from
   double redone_mm = 0;         // what may have printed twice after them, mm
+  std::string objects;          // "[...], \"cancelled\": [...]" (ObjectCancel::json), "" for none
 };
 
 enum class ProgressMode : std::uint8_t { Off, Live, Plain };
@@ -97,6 +98,7 @@ class Progress {
   bool live_shown_ = false;
   std::string last_state_;
   int last_layer_ = -1;
+  std::string last_objects_;
   double last_status_ = -1e300;
 };
 

@@ -169,6 +169,7 @@ class SendSession : private Stage {
   std::uint64_t skipped_bytes_ = 0;
   InputHash input_hash_;            // the input's bytes fed (or printed before a resume)
   std::uint64_t fed_lines_ = 0;     // input lines fed to the pipeline (a resume's not counted)
+  PrintedObjects printed_objects_;  // a resume: the objects the printed part named
 };
 
 }  // namespace gcode::serial

@@ -1,9 +1,10 @@
 #pragma once
 // The sender's ledger of what is on its way to the printer and not answered
-// yet, in the order it was written: numbered lines and the sender's own
-// unnumbered questions (M105). It owns the rule of answers: every line in
-// flight gets one answer, in order, and each "ok" frees what it answers for
-// (answer_to), no more.
+// yet, in the order it was written: the file's numbered lines and the
+// sender's own (an M105 question, a pace probe), numbered too once printing
+// has begun, so that line noise cannot turn them into another command. It
+// owns the rule of answers: every line in flight gets one answer, in order,
+// and each "ok" frees what it answers for (answer_to), no more.
 #include <array>
 #include <bit>
 #include <cstddef>
@@ -18,8 +19,12 @@ class InFlight {
  public:
   static constexpr double kNotArrived = 1e300;
 
-  static constexpr long long kQuestion = -1;   // an M105 the sender asks with
-  static constexpr long long kPaceProbe = -2;  // a move of no length the pacer asks with (pacer.hpp)
+  // A line of the sender's own: what its answer tells.
+  enum class Own : std::uint8_t {
+    None,
+    Question,   // an M105 the sender asks with (its answer proves every line before it ran)
+    PaceProbe,  // a move of no length the pacer asks with (pacer.hpp)
+  };
 
   // What a numbered line is, as the sender's timers ask it of everything in
   // flight on every turn: counted as entries come and go instead of walking
@@ -32,12 +37,13 @@ class InFlight {
   };
 
   struct Entry {
-    long long number;            // < 0: an unnumbered command of the sender's (kQuestion, kPaceProbe)
+    long long number;            // its line number (0: an unnumbered one)
     std::uint32_t bytes;
     bool temperature_query;      // M105: answered in order with "ok T:..."
     std::uint8_t marks;          // Mark bits
     std::uint64_t end;           // output offset just after its last byte
     double arrival;              // when it reached the printer (kNotArrived: not written yet)
+    Own own;                     // a line of the sender's own
   };
 
   // What an "ok" answers for.
@@ -57,8 +63,8 @@ class InFlight {
   Answer answer_to(const Response& ok, bool numbered_oks) const;
 
   void push(long long number, std::size_t bytes, bool temperature_query, std::uint64_t end,
-            std::uint8_t marks = 0) {
-    entries_.push_back({number, static_cast<std::uint32_t>(bytes), temperature_query, marks, end, kNotArrived});
+            std::uint8_t marks = 0, Own own = Own::None) {
+    entries_.push_back({number, static_cast<std::uint32_t>(bytes), temperature_query, marks, end, kNotArrived, own});
     bytes_ += bytes;
     count(entries_.back(), 1);
   }

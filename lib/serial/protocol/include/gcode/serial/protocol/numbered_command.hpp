@@ -1,6 +1,6 @@
 #pragma once
-// What the sender tells the journal (send_journal.hpp) as a command gets its
-// protocol line number, before its bytes can go out: enough to put the
+// What the sender tells the journal (send_journal.hpp) as a numbered command
+// first goes out, before its bytes can reach the port: enough to put the
 // printer back after that command later (a resume).
 #include <cstdint>
 
@@ -18,6 +18,9 @@ struct NumberedCommand {
   long long restore = 0;  // a line of such a resume: the command it goes back to (else 0)
   bool closing = false;   // the closing M400, numbered once every input line was
   bool drains = false;    // M400, G28, G29, G4: once it is answered, every command up to it ran
+  // A line of the sender's own that changes nothing (an M105 question, a
+  // pace probe): its point is the command's before it.
+  bool repeat = false;
 };
 
 }  // namespace gcode::serial

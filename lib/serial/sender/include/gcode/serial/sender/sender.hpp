@@ -89,6 +89,7 @@ struct SenderStats {
   std::uint64_t errors = 0;              // Error: lines
   std::uint64_t ignored_resends = 0;     // requests for lines never sent
   std::uint64_t probes = 0;              // M105 sent because an answer was overdue
+  std::uint64_t polls = 0;               // M105s sent (overdue answers and silent rounds)
   std::uint64_t pace_probes = 0;         // moves of no length the pacer asked with (pacer.hpp)
   std::uint64_t timeouts = 0;            // silent rounds of --timeout
   std::uint64_t busy = 0;
@@ -249,6 +250,9 @@ class Sender : private TimeSink {
   static constexpr long long kHistory = 512;       // sent lines kept for resends
   static constexpr double kQuietStart = 0.05;      // quiet link after M115 before the first line
   static constexpr double kNever = 1e300;
+  // Printer seconds of motion a firmware that answers when a command is
+  // queued (Klipper) holds before an answer waits (measured: about 1 s).
+  static constexpr double kQueuedHold = 1.1;
   static constexpr std::string_view kProbe = "M105";  // asks for an answer that proves progress
   static constexpr std::string_view kPaceProbe = "G1";  // moves nothing: asks whether the planner is full
 
@@ -276,6 +280,12 @@ class Sender : private TimeSink {
     long long restore = 0;       // a line of a reset's resume: the command it goes back to
     MachineState after;          // the machine after it
     ResumeTrack track;           // the print up to it
+    bool closing = false;        // the closing M400 (the journal says so)
+    // A line of the sender's own (an M105 question, a pace probe): numbered
+    // like the file's, so line noise cannot make it another command; it
+    // changes nothing, so it holds the state of the command before it.
+    InFlight::Own own = InFlight::Own::None;
+    std::uint64_t tag = 0;       // the estimator's name for it (its number may move up while unsent)
   };
   Slot& slot(long long n) { return ring_[static_cast<std::size_t>(n) & (ring_.size() - 1)]; }
   const Slot& slot(long long n) const { return ring_[static_cast<std::size_t>(n) & (ring_.size() - 1)]; }
@@ -289,8 +299,15 @@ class Sender : private TimeSink {
   void enqueue(std::string_view command, std::uint64_t source_line, int layer, bool closing = false);
   void refuse(std::uint64_t source_line, std::string why);
   void fill(double now);
-  void send_unnumbered(std::string_view command, bool temperature_query, bool track);
-  void push_flight(long long number, std::size_t bytes, bool temperature_query);
+  void send_unnumbered(std::string_view command);
+  // A line of the sender's own goes out now, numbered next: the commands
+  // numbered but not sent yet move up one number.
+  void send_own(InFlight::Own kind, double now);
+  long long make_room_for_own();
+  void push_flight(long long number, std::size_t bytes, bool temperature_query,
+                   InFlight::Own own = InFlight::Own::None);
+  void journal_first_send(long long number);
+  std::size_t own_line_bytes(std::string_view command) const;
   void acknowledge_front(double now, int planner_free = -1);
   void acknowledge_through(std::size_t index, double now, int planner_free = -1);
   void on_ok(const Response& r, double now);
@@ -317,7 +334,7 @@ class Sender : private TimeSink {
   bool waiting_lines_fit(std::size_t max_line) const;
   // Pacing asked for, on a firmware whose answers can show its planner (not
   // one that answers as soon as a command is queued: Klipper's host queues
-  // about 2 s of motion whatever the sender holds back, so holding moves
+  // about 1 s of motion whatever the sender holds back, so holding moves
   // would only slow the print to the file's feed rates).
   bool pacing() const { return config_.pace && !config_.firmware->ok_when_queued; }
   bool paced(double now);
@@ -358,10 +375,13 @@ class Sender : private TimeSink {
   long long next_number_ = 1;   // the number the next submitted command gets
   long long next_send_ = 1;     // the next number to transmit
   long long highest_sent_ = 0;
+  long long journaled_ = 0;     // the highest number the journal has a record of
+  double queued_end_ = 0;       // when the answered moves end, by their estimates (Klipper's held oks)
   InFlight flight_;
   std::uint64_t out_total_ = 0;     // bytes ever put into out_
   std::uint64_t output_discards_ = 0;
   std::uint64_t written_total_ = 0; // bytes ever handed to the port
+  std::uint64_t next_tag_ = 1;      // the estimator's name for the next command enqueued
 
   bool input_done_ = false;
   bool final_queued_ = false;

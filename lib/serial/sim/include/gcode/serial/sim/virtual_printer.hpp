@@ -61,6 +61,9 @@ struct VirtualPrinterStats {
   std::uint64_t checksum_errors = 0;
   std::uint64_t line_number_errors = 0;
   std::uint64_t overrun_bytes = 0;     // bytes lost to a full RX buffer
+  std::uint64_t held_writes = 0;       // writes that waited for room (write_timeout)
+  std::uint64_t timed_out_bytes = 0;   // ... bytes of them dropped when the wait timed out (in overrun_bytes too)
+  std::uint64_t scripted_errors = 0;   // OctoPrint's scripted refusals fired
   std::uint64_t drained_bytes = 0;     // bytes thrown away after an error
   std::uint64_t corrupted = 0, dropped_oks = 0, spurious_resends = 0, garbage_lines = 0, busy_stalls = 0;
   std::uint64_t rx_bytes = 0, tx_bytes = 0;
@@ -144,6 +147,9 @@ class VirtualPrinter {
   void arrive(char c, double t);
   void run(double t);
   void parse_rx();
+  void admit_held();
+  double held_deadline() const;
+  bool scripted_error(long long n);
   bool process_line(std::string& line);
   void queue_unchecked(std::string_view line);
   void push_command(std::string_view text, long long number);
@@ -203,6 +209,9 @@ class VirtualPrinter {
   std::size_t rx_head_ = 0;
   std::string partial_;         // the line being read out of the RX buffer
   std::string emergency_;       // the start of the line arriving, for the emergency parser
+  std::string held_;            // bytes of a write waiting for room in the RX buffer (write_timeout)
+  double held_since_ = 0;
+  int scripted_fired_ = 0;      // scripted errors fired (scripted_errors)
 
   std::deque<Command> queue_;
   std::deque<Command> spare_;   // reused strings

@@ -21,6 +21,15 @@ struct VirtualPrinterConfig {
   double baud = 250000;
   int queue = 4;              // BUFSIZE
   int rx_buffer = 128;        // RX_BUFFER_SIZE
+  // > 0: a byte that meets a full receive buffer is not lost: the write
+  // waits for room, for at most this many simulated seconds, and then the
+  // rest of it is dropped (OctoPrint's virtual printer: its 64-byte buffer
+  // blocks the writer until its write timeout). 0: lost at once (a UART).
+  double write_timeout = 0;
+  // OctoPrint's virtual printer's scripted errors, once each: line 100 is
+  // refused (a resend), 105 refused with its ok lost, 110 taken as having
+  // no line number, 115 as a checksum mismatch.
+  bool scripted_errors = false;
   int max_line = 96;          // MAX_CMD_SIZE: a line keeps max_line - 1 bytes
   int planner = 16;           // BLOCK_BUFFER_SIZE
   double time_scale = 1;      // simulated seconds per wall second
@@ -57,8 +66,10 @@ struct VirtualPrinterConfig {
 };
 
 // Applies "key=value,key=value" (the part after "virtual:") to `config`.
-// Keys: firmware user-seconds resend-ok idle-wait baud queue rx max-line planner time-scale speed-factor advanced-ok instant-moves
-// simulated-clock report-link heat-rate corrupt drop-ok resend garbage busy silent-after
+// Keys: firmware user-seconds resend-ok idle-wait baud queue rx write-timeout scripted-errors octoprint (rx=64,
+// write-timeout=10, scripted-errors, instant-moves: OctoPrint's virtual printer's defaults) max-line planner
+// time-scale speed-factor advanced-ok instant-moves simulated-clock
+// report-link heat-rate corrupt drop-ok resend garbage busy silent-after
 // halt-after disconnect-after seed log greeting, and scheduled faults
 // (virtual_fault.hpp: "reset@line=N", "drop=S@time=T"). Throws std::invalid_argument naming a bad key or value.
 void parse_virtual_options(std::string_view text, VirtualPrinterConfig& config);
