@@ -36,6 +36,18 @@ TEST_CASE("outline_offset: an L moved inward: straight edges, an arc round the c
   CHECK(offset_inward({{0, 0}, {10, 0}, {10, 1}, {0, 1}}, 0.6, 0.005).empty());
 }
 
+TEST_CASE("outline_offset: a neck narrower than twice the offset splits the loop in two", "[shape][mesh]") {
+  // Two 10 mm squares joined by a 1 mm wide, 5 mm long neck: moved 0.6 inward, the neck's two sides
+  // cross without any edge turning back, so only the crossing test sends it to Clipper.
+  const Polygon dumbbell = {{0, 0}, {10, 0}, {10, 4.5}, {15, 4.5}, {15, 0}, {25, 0},
+                            {25, 10}, {15, 10}, {15, 5.5}, {10, 5.5}, {10, 10}, {0, 10}};
+  const auto pieces = offset_inward(dumbbell, 0.6, 0.005);
+  REQUIRE(pieces.size() == 2);
+  // Each an 8.8 mm square, bulging a little into the neck's mouth round its two concave corners.
+  for (const Polygon& p : pieces) CHECK(loop_area(p) == Approx(8.8 * 8.8 + 0.1).margin(0.1));
+  CHECK(offset_inward(dumbbell, 0.4, 0.005).size() == 1);
+}
+
 TEST_CASE("outline_offset: simplify_loop keeps corners, drops points within the tolerance", "[shape][mesh]") {
   Polygon fine;
   for (int i = 0; i < 100; ++i) fine.push_back({i * 0.1, 0.0001 * (i % 2)});

@@ -1,9 +1,10 @@
 #pragma once
 // Outlines moved inward and thinned out, for a bead that must lie inside a
-// section: Clipper (Debian's libpolyclipping) does the offset, with round
-// joins, so that at a concave corner the bead's edge follows the arc at
-// exactly half a line width from the corner, and parts narrower than the
-// offset vanish or split off instead of folding over.
+// section, with round joins, so that at a concave corner the bead's edge
+// follows the arc at exactly half a line width from the corner. A loop whose
+// offset stays simple is drawn directly (the common case, and far cheaper);
+// otherwise Clipper (Debian's libpolyclipping) resolves it, so that parts
+// narrower than the offset vanish or split off instead of folding over.
 #include <vector>
 
 #include "gcode/core/geometry.hpp"
