@@ -1,16 +1,16 @@
-// gc-shape vase --mesh: the test meshes (support/mesh_maker.hpp) written as
+// gc-shape vase --mesh: the test meshes (support/mesh/mesh_maker.hpp) written as
 // STL files and printed, judged by the independent section checker
-// (support/vase_check.hpp); the output through gc-layers (a turn a layer),
+// (support/mesh/vase_check.hpp); the output through gc-layers (a turn a layer),
 // gc-deform, gc-litho --texture and the virtual printer; every refusal
 // (islands, a hole, too big, malformed, empty) exits 1 and says where.
 #include <catch2/catch.hpp>
 
 #include <nlohmann/json.hpp>
 
-#include "mesh_maker.hpp"
+#include "mesh/mesh_maker.hpp"
 #include "test_support.hpp"
-#include "vase_check.hpp"
-#include "vase_judge.hpp"
+#include "mesh/vase_check.hpp"
+#include "mesh/vase_judge.hpp"
 
 namespace test_gc_shape_vase {
 

@@ -8,7 +8,7 @@
 #include "gcode/procedural/bottom_fill.hpp"
 #include "gcode/procedural/mesh_slicer.hpp"
 #include "gcode/procedural/stl_reader.hpp"
-#include "mesh_maker.hpp"
+#include "mesh/mesh_maker.hpp"
 
 namespace test_bottom_fill {
 

@@ -9,7 +9,7 @@
 #include "gcode/procedural/outline_offset.hpp"
 #include "gcode/procedural/stl_reader.hpp"
 #include "gcode/procedural/wall_outline.hpp"
-#include "mesh_maker.hpp"
+#include "mesh/mesh_maker.hpp"
 
 namespace test_mesh_slicer {
 

@@ -1,6 +1,6 @@
 // procedural/mesh_vase.hpp with shape_gcode.hpp: the test meshes
-// (support/mesh_maker.hpp) as vases, judged by the independent section
-// checker (support/vase_check.hpp): on the model's surface at the middle of
+// (support/mesh/mesh_maker.hpp) as vases, judged by the independent section
+// checker (support/mesh/vase_check.hpp): on the model's surface at the middle of
 // every bead, Z never falling, nothing but extrusion in the wall, the
 // filament of the bead, the wall up to the top, the bottom filled.
 #include <catch2/catch.hpp>
@@ -10,9 +10,9 @@
 #include "gcode/procedural/mesh_vase.hpp"
 #include "gcode/procedural/shape_gcode.hpp"
 #include "gcode/procedural/stl_reader.hpp"
-#include "mesh_maker.hpp"
-#include "vase_check.hpp"
-#include "vase_judge.hpp"
+#include "mesh/mesh_maker.hpp"
+#include "mesh/vase_check.hpp"
+#include "mesh/vase_judge.hpp"
 
 namespace test_mesh_vase {
 

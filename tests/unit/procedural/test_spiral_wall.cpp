@@ -7,7 +7,7 @@
 #include "gcode/procedural/mesh_slicer.hpp"
 #include "gcode/procedural/spiral_wall.hpp"
 #include "gcode/procedural/stl_reader.hpp"
-#include "mesh_maker.hpp"
+#include "mesh/mesh_maker.hpp"
 
 namespace test_spiral_wall {
 

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "gcode/procedural/stl_reader.hpp"
-#include "mesh_maker.hpp"
+#include "mesh/mesh_maker.hpp"
 
 namespace test_stl_reader {
 
