@@ -42,9 +42,12 @@ HeightMapOptions shape(bool closed) {
   return o;
 }
 
+// One slot for each PathRole (WallOuter, WallInner, Base, Fill).
+constexpr int kPathOrderRoles = static_cast<int>(gcode::litho::PathRole::Fill) + 1;
+
 struct Totals {
-  double volume[3] = {0, 0, 0};
-  double length[3] = {0, 0, 0};
+  double volume[kPathOrderRoles] = {};
+  double length[kPathOrderRoles] = {};
   std::size_t clamped = 0;
 };
 
@@ -82,7 +85,7 @@ TEST_CASE("litho path order: same beads, walls first, each layer starts where th
       // The same plastic in the same places: per role, the volume and the
       // length of the beads (a piece cut in two where a loop starts adds no length).
       const Totals a = totals(plain), b = totals(ordered);
-      for (int r = 0; r < 3; ++r) {
+      for (int r = 0; r < kPathOrderRoles; ++r) {
         REQUIRE(b.volume[r] == Approx(a.volume[r]).epsilon(1e-12));
         REQUIRE(b.length[r] == Approx(a.length[r]).epsilon(1e-9));
       }
