@@ -262,6 +262,17 @@ long long Sender::make_room_for_own() {
   return prev;
 }
 
+// Whether every command waiting to go out still fits the firmware's line
+// once moved up one number (N99 becomes N100: one byte more). Where one
+// would not, gc-send asks nothing of its own until that command is out.
+bool Sender::room_for_own() const {
+  for (long long n = next_send_; n < next_number_; ++n) {
+    const std::size_t grows = std::to_string(n + 1).size() - std::to_string(n).size();
+    if (slot(n).wire.size() + grows > config_.max_line) return false;
+  }
+  return true;
+}
+
 void Sender::send_own(InFlight::Own kind, double now) {
   const long long k = next_send_;
   const long long prev = make_room_for_own();
@@ -756,6 +767,7 @@ void Sender::pace_probe(double now, std::size_t reserve) {
   if (!config_.firmware->empty_move_waits || flight_.probing() || resend_.settling()) return;
   if (!pacer_.probe_wanted(clock_.planner_blocks())) return;
   if (!flow_.may_send(flight_.lines(), flight_.bytes() + reserve, own_line_bytes(kPaceProbe))) return;
+  if (!room_for_own()) return;
   send_own(InFlight::Own::PaceProbe, now);
   ++stats_.pace_probes;
 }
@@ -863,6 +875,7 @@ void Sender::probe(double now, bool silent) {
   // were behind the bad one have reached the printer and been refused
   // (each empties its buffer, and would take the question with it).
   if (resend_.settling() && !resend_.quiet(now, last_any_rx_)) return;
+  if (!room_for_own()) return;
   if (!silent) {
     ++stats_.probes;
     long long n = flight_.empty() ? -1 : flight_.front().number;

@@ -302,6 +302,7 @@ class Sender : private TimeSink {
   void send_unnumbered(std::string_view command);
   // A line of the sender's own goes out now, numbered next: the commands
   // numbered but not sent yet move up one number.
+  bool room_for_own() const;
   void send_own(InFlight::Own kind, double now);
   long long make_room_for_own();
   void push_flight(long long number, std::size_t bytes, bool temperature_query,
