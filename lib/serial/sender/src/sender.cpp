@@ -22,6 +22,7 @@ Sender::Sender(const SenderConfig& config, Logger log)
     : config_(config),
       log_(std::move(log)),
       flow_(config.flow, config.queue, config.rx_buffer),
+      handshake_(config.timeout),
       clock_(config.link_bytes_per_second, config.time_scale, config.planner_blocks),
       estimator_(sender_estimator_options(), this),
       ring_(2048) {}
@@ -32,7 +33,7 @@ void Sender::log(LogLevel level, std::uint64_t input_line, std::string_view mess
 
 void Sender::start(double now) {
   last_rx_ = last_any_rx_ = now;
-  if (config_.handshake || continuing_) {
+  if (config_.handshake || handshake_.resumed()) {
     begin_handshake(now);
   } else {
     state_ = SenderState::Printing;
@@ -42,22 +43,10 @@ void Sender::start(double now) {
 
 // The questions before the first line; again after a reset
 // (restart_handshake) or a link drop that cut them short
-// (sender_relink.cpp). M110 unless a resume goes on with the numbering of
-// a printer that kept running.
+// (sender_relink.cpp).
 void Sender::begin_handshake(double now) {
-  handshake_start_ = handshake_retry_ = now;
-  caps_answered_ = false;
-  if (!resumed_onto_running_printer()) {
-    state_ = SenderState::Handshake;
-    // Unnumbered: Marlin only checks numbers on lines that start with N, and
-    // M110 N0 makes the next numbered line N1.
-    send_unnumbered(handshake_line());
-  } else {
-    // A resume: the numbering stays, the capabilities (and a simulated
-    // printer's time scale) are asked again.
-    state_ = SenderState::Capabilities;
-    send_unnumbered("M115");
-  }
+  state_ = SenderState::Handshake;
+  send_unnumbered(handshake_.begin(now));
 }
 
 void Sender::continue_from(long long next, const MachineState& printer, const ResumeTrack& track,
@@ -66,7 +55,7 @@ void Sender::continue_from(long long next, const MachineState& printer, const Re
   highest_sent_ = journaled_ = next - 1;
   last_acked_.number = next - 1;
   machine_ = printer;
-  continuing_ = true;
+  handshake_.resume_running_printer();
   first_held_ = next;
   last_enqueued_ = next - 1;
   track_ = track;
@@ -484,21 +473,15 @@ void Sender::on_ok(const Response& r, double now) {
 
 // An "ok" during the handshake: M110's (then M115 goes out), or M115's.
 bool Sender::answers_handshake(const Response& r, double now) {
-  if (state_ == SenderState::Handshake) {
-    state_ = SenderState::Capabilities;
-    handshake_retry_ = now;
-    send_unnumbered("M115");
-    return true;
+  if (!handshaking()) return false;
+  switch (handshake_.ok(now)) {
+    case Handshake::Answer::AskCapabilities: send_unnumbered(handshake_.question()); break;
+    case Handshake::Answer::Capabilities:
+      // Klipper answers M115 on its ok line.
+      if (r.text.find("FIRMWARE_NAME:") != std::string_view::npos) on_capability(r.text);
+      break;
+    case Handshake::Answer::Extra: ++stats_.stray_oks; break;
   }
-  if (state_ != SenderState::Capabilities) return false;
-  // Klipper answers M115 on its ok line.
-  if (!caps_answered_ && r.text.find("FIRMWARE_NAME:") != std::string_view::npos) on_capability(r.text);
-  // The answer to M115, or a late answer to a repeated M110 (one sent
-  // after the greeting of a board that was still booting). Printing starts
-  // once the link has been quiet for a moment, so no such extra "ok" can
-  // be taken for the first line's.
-  if (caps_answered_) ++stats_.stray_oks;
-  caps_answered_ = true;
   return true;
 }
 
@@ -717,13 +700,9 @@ void Sender::on_action(std::string_view action) {
 // what the printer had queued: the print goes back to the last command
 // that surely ran (sender_reset.cpp).
 void Sender::on_start(std::string_view text, double now) {
-  const bool handshaking = state_ == SenderState::Handshake || state_ == SenderState::Capabilities;
-  if (handshaking && !resumed_onto_running_printer()) {
-    // (After M110 was answered: it restarted again, and forgot it.)
-    state_ = SenderState::Handshake;
-    caps_answered_ = false;
-    send_unnumbered(handshake_line());
-  } else if (state_ == SenderState::Printing || handshaking) {
+  if (handshaking() && handshake_.greeted()) {
+    send_unnumbered(handshake_.question());
+  } else if (state_ == SenderState::Printing || handshaking()) {
     // (Handshaking here: a resume's M115 to a printer that had kept running
     // the print; it holds the print no longer.)
     printer_reset(fmt::format("it said \"{}\"{}", text, relink_ != Relink::None ? " while its port was away" : ""),
@@ -847,9 +826,7 @@ double Sender::deadline() const {
   // A printer heating or homing reads no line until it is done, but says
   // it is alive (temperatures, busy): the probe's answer may take that long.
   if (relink_ != Relink::None) return std::max(relink_since_, last_any_rx_) + config_.timeout;
-  if (state_ == SenderState::Capabilities && caps_answered_) return last_any_rx_ + kQuietStart;
-  if (state_ == SenderState::Handshake || state_ == SenderState::Capabilities)
-    return std::min(handshake_retry_ + std::min(1.0, config_.timeout / 3), handshake_start_ + config_.timeout);
+  if (handshaking()) return handshake_.deadline(last_any_rx_);
   double d = pacer_.wake();
   // (While paused or cancelled nothing is sent again: no timer for it.)
   if (resend_.settling() && !lines_in_flight() && !paused_ && !cancelled_) d = resend_.quiet_at(last_any_rx_);
@@ -898,13 +875,13 @@ void Sender::on_timer(double now) {
                        config_.timeout, describe(last_acked_)));
     return;
   }
-  if (state_ == SenderState::Capabilities && caps_answered_ && now >= last_any_rx_ + kQuietStart) {
+  if (handshaking() && handshake_.finished(now, last_any_rx_)) {
     state_ = SenderState::Printing;
     if (firmware_.advanced_ok) flow_.firmware_has_advanced_ok();
     fill(now);
     return;
   }
-  if (state_ == SenderState::Handshake || state_ == SenderState::Capabilities) {
+  if (handshaking()) {
     handshake_timer(now);
     return;
   }
@@ -930,19 +907,16 @@ void Sender::on_timer(double now) {
 
 // M110 or M115 unanswered: asked again, until the timeout.
 void Sender::handshake_timer(double now) {
-  if (now >= handshake_start_ + config_.timeout) {
-    if (state_ == SenderState::Capabilities) {
-      // The firmware answered M110 but not M115: print without its capabilities.
+  switch (handshake_.due(now)) {
+    case Handshake::Due::Wait: break;
+    case Handshake::Due::AskAgain: send_unnumbered(handshake_.question()); break;
+    case Handshake::Due::WithoutCapabilities:
       state_ = SenderState::Printing;
       fill(now);
-      return;
-    }
-    fail(fmt::format("no answer from the printer within {} s (is the baud rate right?)", config_.timeout));
-    return;
-  }
-  if (now >= handshake_retry_ + std::min(1.0, config_.timeout / 3)) {
-    handshake_retry_ = now;
-    send_unnumbered(state_ == SenderState::Handshake ? handshake_line() : std::string("M115"));
+      break;
+    case Handshake::Due::NoAnswer:
+      fail(fmt::format("no answer from the printer within {} s (is the baud rate right?)", config_.timeout));
+      break;
   }
 }
 

@@ -29,7 +29,7 @@ void Sender::link_lost(double now) {
 
 void Sender::link_back(double now) {
   if (relink_ != Relink::Down || finished()) return;
-  if (state_ == SenderState::Handshake || state_ == SenderState::Capabilities) {
+  if (handshaking()) {
     // Dropped while M110 or M115 waited for its answer: no numbered line
     // went out since, so there is nothing to locate; the questions start
     // again (the probe's refusal would pass for their answers).

@@ -32,8 +32,6 @@ struct Again {
 
 }  // namespace
 
-std::string Sender::handshake_line() const { return fmt::format("M110 N{}", handshake_number_); }
-
 void Sender::track(Slot& s, const Line& line, const Move& move) {
   s.drains = line.is_m(400) || line.is_g(28) || line.is_g(29) || line.is_g(4);
   s.prev = last_enqueued_;
@@ -167,7 +165,7 @@ bool Sender::resubmit_after_reset(long long back, const std::vector<std::string>
   // are free again: the handshake names the last number that went out, whose
   // journal record was written before it did.
   next_number_ = next_send_ = highest_sent_ + 1;
-  handshake_number_ = highest_sent_;
+  handshake_.number_on_from(highest_sent_);
   journaled_ = std::min(journaled_, highest_sent_);
   last_enqueued_ = back;
   machine_ = MachineState{};
@@ -189,7 +187,7 @@ bool Sender::resubmit_after_reset(long long back, const std::vector<std::string>
   // The way back's first line is journaled before the handshake goes out: a
   // gc-send stopped between the two finds, on --resume, the printer at the
   // handshake's number and the way back right after it in the journal.
-  if (!sequence.empty()) journal_first_send(handshake_number_ + 1);
+  if (!sequence.empty()) journal_first_send(handshake_.number() + 1);
   return true;
 }
 
@@ -224,7 +222,8 @@ void Sender::continue_after_reset(long long last_number, long long restore, int 
                                   const std::vector<std::string>& sequence, const MachineState& target,
                                   const ResumeTrack& track, std::uint64_t source_line) {
   next_number_ = next_send_ = last_number + 1;
-  highest_sent_ = handshake_number_ = journaled_ = last_number;
+  highest_sent_ = journaled_ = last_number;
+  handshake_.number_on_from(last_number);
   last_acked_.number = last_number;
   first_held_ = last_number + 1;
   last_enqueued_ = restore;  // the sequence follows the command it goes back to

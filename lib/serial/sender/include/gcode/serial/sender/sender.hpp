@@ -4,7 +4,7 @@
 // decides what to send next. The event loop around it (send_session.hpp) only
 // moves bytes and time.
 //
-// It does the handshake (M110 N0, M115: protocol.hpp's read_capability),
+// It does the handshake (handshake.hpp: M110 N0, M115),
 // numbers and checksums every command and keeps a history for resends
 // (resend.hpp), counts answers exactly (in_flight.hpp: each "ok" frees what
 // it answers for), asks with M105 when an answer is overdue or the link is
@@ -32,6 +32,7 @@
 #include "gcode/serial/protocol/protocol.hpp"
 #include "gcode/serial/protocol/resend.hpp"
 #include "gcode/serial/protocol/reset_sequence.hpp"
+#include "gcode/serial/sender/handshake.hpp"
 
 namespace gcode::serial {
 
@@ -218,7 +219,9 @@ class Sender : private TimeSink {
   // Second Ctrl-C: M112 goes out at once, ahead of anything queued.
   void emergency_stop();
 
-  SenderState state() const { return state_; }
+  SenderState state() const {
+    return handshaking() && handshake_.step() == Handshake::Step::Capabilities ? SenderState::Capabilities : state_;
+  }
   bool finished() const { return state_ == SenderState::Done || state_ == SenderState::Failed || (state_ == SenderState::Cancelled && output().empty()); }
   const std::string& failure() const { return failure_; }
   const SenderStats& stats() const { return stats_; }
@@ -248,7 +251,6 @@ class Sender : private TimeSink {
  private:
   static constexpr std::size_t kHighWater = 512;   // lines read ahead of the printer
   static constexpr long long kHistory = 512;       // sent lines kept for resends
-  static constexpr double kQuietStart = 0.05;      // quiet link after M115 before the first line
   static constexpr double kNever = 1e300;
   // Printer seconds of motion a firmware that answers when a command is
   // queued (Klipper) holds before an answer waits (measured: about 1 s).
@@ -313,6 +315,8 @@ class Sender : private TimeSink {
   void acknowledge_through(std::size_t index, double now, int planner_free = -1);
   void on_ok(const Response& r, double now);
   bool answers_handshake(const Response& r, double now);
+  // (state_ is Handshake for both of its steps: handshake_ knows which.)
+  bool handshaking() const { return state_ == SenderState::Handshake; }
   void on_resend(long long n, double now);
   void on_error(const Response& r, double now);
   void on_action(std::string_view action);
@@ -353,12 +357,7 @@ class Sender : private TimeSink {
   // False when the print failed instead (a line no longer fits under its new number).
   bool resubmit_after_reset(long long restore, const std::vector<std::string>& sequence);
   void begin_handshake(double now);
-  // A resume onto a printer that kept running (continue_from), no reset
-  // since: a greeting now is a reset that lost the print, not a board
-  // still booting. (A reset's resubmission numbers M110 on from the print.)
-  bool resumed_onto_running_printer() const { return continuing_ && handshake_number_ == 0; }
   void restart_handshake(double now);
-  std::string handshake_line() const;
   void track(Slot& s, const Line& line, const Move& move);
   void took_back();
 
@@ -366,6 +365,7 @@ class Sender : private TimeSink {
   Logger log_;
   FlowControl flow_;
   SenderState state_ = SenderState::Idle;
+  Handshake handshake_;
   std::string out_;
   std::size_t out_pos_ = 0;
 
@@ -391,9 +391,7 @@ class Sender : private TimeSink {
   bool paused_ = false;         // //action:pause until //action:resume
   bool printer_paused_ = false; // "// action:paused" until "// action:resumed"
   bool told_user_wait_ = false; // said once that a wait for the user holds the timeouts
-  bool caps_answered_ = false;
   bool pacing_off_said_ = false;  // detect_flavour(): "pacing off" said
-  bool continuing_ = false;     // continue_from(): a resume's numbering
   // The command a resume went on after (held()): surely run, so a reset soon
   // after the resume goes back to it. -1: none.
   long long base_number_ = -1;
@@ -409,8 +407,6 @@ class Sender : private TimeSink {
   double last_rx_ = 0;          // last sign of life (an answer, busy, a heating report)
   double last_any_rx_ = 0;      // last byte of anything
   double last_busy_ = -1e9;
-  double handshake_start_ = 0;
-  double handshake_retry_ = 0;
   int timeouts_in_row_ = 0;
 
   Relink relink_ = Relink::None;  // after the port went away (sender_relink.cpp)
@@ -419,7 +415,6 @@ class Sender : private TimeSink {
   bool position_asked_ = false;
 
   // A reset's resume (sender_reset.cpp): what the print has done so far.
-  long long handshake_number_ = 0;  // M110 N this: the line before the next one numbered
   long long last_enqueued_ = 0;     // the newest command in the print's order
   ResumeTrack track_;               // the print as numbered so far
   long long first_held_ = 1;        // the oldest number this sender numbered itself
