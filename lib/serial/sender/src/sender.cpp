@@ -61,19 +61,7 @@ void Sender::continue_from(long long next, const MachineState& printer, const Re
   track_ = track;
   // The printer kept running: it drained what it took, so every command up
   // to next - 1 ran.
-  hold_base(next - 1, printer, track, source_line, layer);
-}
-
-void Sender::hold_base(long long n, const MachineState& after, const ResumeTrack& track, std::uint64_t source_line,
-                       int layer) {
-  base_number_ = n;
-  base_ = Slot();
-  base_.drains = true;
-  base_.after = after;
-  base_.track = track;
-  base_.source_line = source_line;
-  base_.layer = layer;
-  for (int a = 0; a < 3; ++a) base_.at[static_cast<std::size_t>(a)] = after.position[a];
+  recovery_.hold_base(next - 1, printer, track, source_line, layer);
 }
 
 void Sender::grow_ring() {
@@ -266,7 +254,7 @@ void Sender::send_own(InFlight::Own kind, double now) {
   const long long k = next_send_;
   const long long prev = make_room_for_own();
   Slot& s = slot(k);
-  const Slot& before = prev > 0 && (in_history(prev) || prev == base_number_) ? held(prev) : Slot();
+  const PrintStep& before = prev > 0 && (in_history(prev) || recovery_.is_base(prev)) ? held(prev) : PrintStep();
   s.source_line = before.source_line;
   s.layer = before.layer;
   s.at = before.at;

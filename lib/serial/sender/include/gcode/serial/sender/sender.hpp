@@ -33,6 +33,7 @@
 #include "gcode/serial/protocol/resend.hpp"
 #include "gcode/serial/protocol/reset_sequence.hpp"
 #include "gcode/serial/sender/handshake.hpp"
+#include "gcode/serial/sender/reset_recovery.hpp"
 
 namespace gcode::serial {
 
@@ -113,7 +114,7 @@ struct Position {
   int layer = 0;                 // the layer it belongs to (0: start code)
 };
 
-class Sender : private TimeSink {
+class Sender : private TimeSink, private PrintHistory {
  public:
   // `input_line`: the input line a message is about (0: none).
   using Logger = std::function<void(LogLevel, std::uint64_t input_line, std::string_view)>;
@@ -262,26 +263,17 @@ class Sender : private TimeSink {
   // printer named its last line, M114 goes out after the refusal's ok;
   // Finishing: the position is right, M114's own ok is still to come.
   enum class Relink : std::uint8_t { None, Down, Probing, Locating, Finishing };
-  struct Slot {
+  // PrintStep: what a reset reads of it (reset_recovery.hpp).
+  struct Slot : PrintStep {
     std::string wire;            // "N12 G1 X1*34\n"
-    std::uint64_t source_line = 0;
-    int layer = 0;
     bool long_running = false;   // M109, G28, M400 ...: the answer may take long
     bool unbounded = false;      // M109, G28 ...: for a time nothing in the file tells
     bool silent_wait = false;    // waits for the user without a word (Prusa's M600)
     bool temperature_query = false;  // M105: answered in order with "ok T:..."
-    bool move = false;           // takes a planner block (its ok comes when it has one)
     bool instant = false;        // answered at once (G92, M104, G1 F1200 ...)
     double motion = 0;           // printer seconds of moves (the estimator's once final)
     double nominal = 0;          // length / feed rate: no move takes less
     bool motion_final = false;
-    std::array<double, 3> at{};  // X Y Z after it (what M114 says once it has run)
-    // For a resume after a reset (sender_reset.cpp):
-    bool drains = false;         // M400, G28, G4: its ok comes once every move before it ran
-    long long prev = 0;          // the command before it in the print (n - 1 but after a reset)
-    long long restore = 0;       // a line of a reset's resume: the command it goes back to
-    MachineState after;          // the machine after it
-    ResumeTrack track;           // the print up to it
     bool closing = false;        // the closing M400 (the journal says so)
     // A line of the sender's own (an M105 question, a pace probe): numbered
     // like the file's, so line noise cannot make it another command; it
@@ -291,11 +283,11 @@ class Sender : private TimeSink {
   };
   Slot& slot(long long n) { return ring_[static_cast<std::size_t>(n) & (ring_.size() - 1)]; }
   const Slot& slot(long long n) const { return ring_[static_cast<std::size_t>(n) & (ring_.size() - 1)]; }
-  // slot(n), or the resume's base: the command a resume went on after,
-  // sent by an earlier gc-send and known from its journal only.
-  const Slot& held(long long n) const { return n == base_number_ ? base_ : slot(n); }
-  void hold_base(long long n, const MachineState& after, const ResumeTrack& track, std::uint64_t source_line,
-                 int layer);
+  // PrintHistory: slot(n), or the resume's base (ResetRecovery::base).
+  bool holds(long long n) const override { return in_history(n); }
+  const PrintStep& step(long long n) const override { return slot(n); }
+  const PrintStep& held(long long n) const override { return recovery_.is_base(n) ? recovery_.base() : slot(n); }
+  long long first_held() const override { return first_held_; }
   void on_time(std::int64_t tag, double seconds) override;
   void grow_ring();
   void enqueue(std::string_view command, std::uint64_t source_line, int layer, bool closing = false);
@@ -350,7 +342,6 @@ class Sender : private TimeSink {
   bool check_position(std::string_view text, double now);
   void relink_ok(double now);
   void printer_reset(std::string_view how, double now);
-  long long surely_ran() const;
   bool in_history(long long n) const {
     return n >= std::max(first_held_, next_send_ - kHistory) && n < next_number_;
   }
@@ -392,10 +383,6 @@ class Sender : private TimeSink {
   bool printer_paused_ = false; // "// action:paused" until "// action:resumed"
   bool told_user_wait_ = false; // said once that a wait for the user holds the timeouts
   bool pacing_off_said_ = false;  // detect_flavour(): "pacing off" said
-  // The command a resume went on after (held()): surely run, so a reset soon
-  // after the resume goes back to it. -1: none.
-  long long base_number_ = -1;
-  Slot base_;
   bool idle_hint_ = false;      // the printer said "wait" (idle) with lines in flight
   ProbeBackoff probes_;
   int learnt_planner_ = 0;      // planner blocks seen in ADVANCED_OK's P
@@ -419,6 +406,7 @@ class Sender : private TimeSink {
   ResumeTrack track_;               // the print as numbered so far
   long long first_held_ = 1;        // the oldest number this sender numbered itself
   long long restoring_ = 0;         // numbering a resume's lines: the command they go back to
+  ResetRecovery recovery_;          // the resume's base, and what a reset goes back to
 
   Position last_acked_;
   FirmwareInfo firmware_;
