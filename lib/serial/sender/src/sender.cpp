@@ -319,7 +319,7 @@ bool Sender::settled(double now) const {
 
 void Sender::fill(double now) {
   pacer_.clear_wake();
-  if (state_ != SenderState::Printing || paused_ || printer_paused_ || cancelled_ || relink_ != Relink::None) return;
+  if (state_ != SenderState::Printing || paused_ || printer_paused_ || cancelled_ || relocator_.active()) return;
   if (resend_.settling()) {
     if (!settled(now)) return;
     resend_.settled();
@@ -366,7 +366,7 @@ void Sender::fill(double now) {
 
 void Sender::check_done(double now) {
   // Done when every line is acknowledged (an M105 of ours may still be out).
-  if (state_ == SenderState::Printing && relink_ == Relink::None && input_done_ &&
+  if (state_ == SenderState::Printing && !relocator_.active() && input_done_ &&
       (final_queued_ || !config_.finish_with_m400) &&
       next_send_ == next_number_ && !lines_in_flight() && !resend_.settling() && next_number_ > 1) {
     if (refusal_.empty()) {
@@ -426,7 +426,7 @@ void Sender::on_ok(const Response& r, double now) {
   if (answers_handshake(r, now)) return;
   // Marlin answers a rejected line with Error, Resend and "ok": that ok
   // belongs to the rejected line, which already left the flight list.
-  if (relink_ == Relink::Locating || relink_ == Relink::Finishing) {
+  if (relocator_.phase() == Relocator::Phase::Locating || relocator_.phase() == Relocator::Phase::Finishing) {
     relink_ok(now);
     return;
   }
@@ -480,7 +480,7 @@ void Sender::on_resend(long long n, double now) {
   written_off_ = 0;
   idle_hint_ = false;
   if (state_ != SenderState::Printing) return;
-  if (relink_ == Relink::Probing) {
+  if (relocator_.phase() == Relocator::Phase::Probing) {
     relocate(n, now);
     return;
   }
@@ -585,7 +585,7 @@ void Sender::on_line(std::string_view text, double now) {
     resend_.heard(now);
   }
   note_temperatures(r, text);
-  if (relink_ == Relink::Locating && position_asked_ && check_position(text, now)) return;
+  if (relocator_.position_due() && check_position(text, now)) return;
   if (r.kind != ResponseKind::Ok && r.kind != ResponseKind::Resend && r.kind != ResponseKind::Empty)
     resend_.other_answer();
   switch (r.kind) {
@@ -693,7 +693,7 @@ void Sender::on_start(std::string_view text, double now) {
   } else if (state_ == SenderState::Printing || handshaking()) {
     // (Handshaking here: a resume's M115 to a printer that had kept running
     // the print; it holds the print no longer.)
-    printer_reset(fmt::format("it said \"{}\"{}", text, relink_ != Relink::None ? " while its port was away" : ""),
+    printer_reset(fmt::format("it said \"{}\"{}", text, relocator_.active() ? " while its port was away" : ""),
                   now);
   }
 }
@@ -810,10 +810,10 @@ double Sender::overdue_at() const {
 }
 
 double Sender::deadline() const {
-  if (finished() || relink_ == Relink::Down) return kNever;
+  if (finished() || relocator_.phase() == Relocator::Phase::Down) return kNever;
   // A printer heating or homing reads no line until it is done, but says
   // it is alive (temperatures, busy): the probe's answer may take that long.
-  if (relink_ != Relink::None) return std::max(relink_since_, last_any_rx_) + config_.timeout;
+  if (relocator_.active()) return relocator_.deadline(last_any_rx_, config_.timeout);
   if (handshaking()) return handshake_.deadline(last_any_rx_);
   double d = pacer_.wake();
   // (While paused or cancelled nothing is sent again: no timer for it.)
@@ -856,8 +856,8 @@ void Sender::probe(double now, bool silent) {
 
 void Sender::on_timer(double now) {
   if (finished()) return;
-  if (relink_ != Relink::None) {
-    if (relink_ != Relink::Down && now >= std::max(relink_since_, last_any_rx_) + config_.timeout)
+  if (relocator_.active()) {
+    if (relocator_.phase() != Relocator::Phase::Down && now >= relocator_.deadline(last_any_rx_, config_.timeout))
       fail(fmt::format("after the reconnect the printer did not say where it is (silent for {:g} s); last "
                        "acknowledged: {}",
                        config_.timeout, describe(last_acked_)));

@@ -1,10 +1,5 @@
-// After the port went away and came back (gc-send --reconnect): where the
-// printer is. Marlin's "ok" means queued, not done, and answers sent while
-// the link was gone were lost, so the sender cannot know which lines the
-// printer took; it asks. A line with a number the printer cannot expect is
-// refused with "Last Line: n" (every line up to n was taken, and a board
-// that kept its power runs them all), then M114 says where it stands, which
-// must be where line n left it.
+// After the port went away and came back (gc-send --reconnect): the
+// sender's side of the Relocator (relocator.hpp), which decides each step.
 
 #include <fmt/format.h>
 
@@ -16,8 +11,7 @@ namespace gcode::serial {
 
 void Sender::link_lost(double now) {
   if (finished()) return;
-  relink_ = Relink::Down;
-  relink_since_ = now;
+  relocator_.lost(now);
   // Bytes not written yet never reach the printer; what it has of the rest
   // it says after the reconnect.
   out_total_ -= out_.size() - out_pos_;
@@ -28,12 +22,12 @@ void Sender::link_lost(double now) {
 }
 
 void Sender::link_back(double now) {
-  if (relink_ != Relink::Down || finished()) return;
+  if (relocator_.phase() != Relocator::Phase::Down || finished()) return;
   if (handshaking()) {
     // Dropped while M110 or M115 waited for its answer: no numbered line
     // went out since, so there is nothing to locate; the questions start
     // again (the probe's refusal would pass for their answers).
-    relink_ = Relink::None;
+    relocator_.forget();
     log(LogLevel::Warning, 0, "the port came back during the handshake (M110, M115); asking again");
     begin_handshake(now);
     return;
@@ -45,33 +39,26 @@ void Sender::link_back(double now) {
                      config_.firmware->name, describe(last_acked_)));
     return;
   }
-  relink_ = Relink::Probing;
-  relink_since_ = now;
-  position_asked_ = false;
-  // No printer can expect this number: the highest sent is at most one
-  // past its last line.
   std::string probe;
-  append_numbered_line(probe, highest_sent_ + 2, kProbe);
+  append_numbered_line(probe, relocator_.probe(now, highest_sent_), kProbe);
   out_ += probe;
   out_total_ += probe.size();
   if (trace_) log(LogLevel::Trace, 0, fmt::format("-> {}", std::string_view(probe).substr(0, probe.size() - 1)));
 }
 
-// The printer refused the probe and asked for line `expected`: it has every
-// line before it.
+// The printer refused the probe and asked for line `expected`.
 void Sender::relocate(long long expected, double now) {
   const long long last = expected - 1;
-  if (last == 0 && highest_sent_ > 0) {
-    // It restarted while the port was away, its greeting lost with the
-    // link: a reset like any other.
-    printer_reset("its line numbers were back at 0 when its port came back", now);
-    return;
-  }
-  if (last < last_acked_.number || last > highest_sent_) {
-    fail(fmt::format("after the reconnect the printer says its last line is N{}, but N{} was acknowledged and N{} "
+  switch (relocator_.refused(expected, last_acked_.number, highest_sent_, now)) {
+    case Relocator::Refusal::Restarted:
+      printer_reset("its line numbers were back at 0 when its port came back", now);
+      return;
+    case Relocator::Refusal::Impossible:
+      fail(fmt::format("after the reconnect the printer says its last line is N{}, but N{} was acknowledged and N{} "
                      "sent last; not going on",
-                     last, last_acked_.number, highest_sent_));
-    return;
+                       last, last_acked_.number, highest_sent_));
+      return;
+    case Relocator::Refusal::Took: break;
   }
   for (long long n = last_acked_.number + 1; n <= last; ++n) {
     const Slot& s = slot(n);
@@ -82,9 +69,6 @@ void Sender::relocate(long long expected, double now) {
   }
   last_acked_.number = last;
   next_send_ = last + 1;
-  relink_ = Relink::Locating;
-  relink_line_ = last;
-  relink_since_ = now;
   log(LogLevel::Info, 0, fmt::format("the printer took every line up to N{} ({}); asking where it stands (M114)", last,
                                      describe(last_acked_)));
 }
@@ -94,38 +78,31 @@ bool Sender::check_position(std::string_view text, double now) {
   std::optional<PositionReport> report = parse_position_report(text);
   if (!report) return false;
   static constexpr const char* kAxes[] = {"X", "Y", "Z"};
-  if (relink_line_ > 0) {
-    const Slot& s = slot(relink_line_);
+  const long long line = relocator_.line();
+  if (line > 0) {
+    const Slot& s = slot(line);
     if (const int a = axis_off(*report, s.at, 0.01); a >= 0) {
       const auto i = static_cast<std::size_t>(a);
       fail(fmt::format("after the reconnect the printer stands at {}{:.3f}, but N{} ({}) left it at {}{:.3f}: it did not "
                        "keep its state; not going on",
-                       kAxes[i], report->axis[i], relink_line_, describe(last_acked_), kAxes[i], s.at[i]));
+                       kAxes[i], report->axis[i], line, describe(last_acked_), kAxes[i], s.at[i]));
       return true;
     }
   }
-  relink_ = Relink::Finishing;
+  relocator_.placed();
   last_rx_ = now;
   log(LogLevel::Warning, 0,
-      fmt::format("the printer ran on and stands where N{} left it; going on from N{}", relink_line_, next_send_));
+      fmt::format("the printer ran on and stands where N{} left it; going on from N{}", line, next_send_));
   return true;
 }
 
-// An "ok" while the printer is located. The first is the refused probe's:
-// the printer's buffer is empty now, M114 goes out (counted by no ledger:
-// its answer is told apart by its text). Until that answer come the oks of
-// lines the printer had queued before the probe (all of them up to its last
-// line, known to be taken); after it, M114's own ok, and sending goes on.
+// An "ok" while the printer is located (Relocator::ok).
 void Sender::relink_ok(double now) {
   resend_.take_rejected_ok();
-  if (relink_ == Relink::Finishing) {
-    relink_ = Relink::None;
-    fill(now);
-    return;
-  }
-  if (!position_asked_) {
-    position_asked_ = true;
-    send_unnumbered("M114");
+  switch (relocator_.ok()) {
+    case Relocator::Ok::Done: fill(now); break;
+    case Relocator::Ok::AskPosition: send_unnumbered("M114"); break;
+    case Relocator::Ok::Wait: break;
   }
 }
 

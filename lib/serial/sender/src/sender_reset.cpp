@@ -151,8 +151,7 @@ void Sender::restart_handshake(double now) {
   pacer_ = Pacer();
   idle_hint_ = false;
   paused_ = false;
-  relink_ = Relink::None;
-  position_asked_ = false;
+  relocator_.forget();
   timeouts_in_row_ = 0;
   last_rx_ = now;
   begin_handshake(now);  // M110: the numbering goes on from the print

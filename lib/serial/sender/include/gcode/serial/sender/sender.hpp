@@ -33,6 +33,7 @@
 #include "gcode/serial/protocol/resend.hpp"
 #include "gcode/serial/protocol/reset_sequence.hpp"
 #include "gcode/serial/sender/handshake.hpp"
+#include "gcode/serial/sender/relocator.hpp"
 #include "gcode/serial/sender/reset_recovery.hpp"
 
 namespace gcode::serial {
@@ -162,7 +163,7 @@ class Sender : private TimeSink, private PrintHistory {
   // (within 0.01 mm) gets the next line; one that restarted, or stands
   // elsewhere, fails the print with a message that says so.
   void link_back(double now);
-  bool relinking() const { return relink_ != Relink::None; }
+  bool relinking() const { return relocator_.active(); }
 
   // The printer's host actions (//action:pause, //action:resume); without a
   // handler a pause holds sending until the resume.
@@ -259,10 +260,6 @@ class Sender : private TimeSink, private PrintHistory {
   static constexpr std::string_view kProbe = "M105";  // asks for an answer that proves progress
   static constexpr std::string_view kPaceProbe = "G1";  // moves nothing: asks whether the planner is full
 
-    // Down: no port; Probing: the mis-numbered line is out; Locating: the
-  // printer named its last line, M114 goes out after the refusal's ok;
-  // Finishing: the position is right, M114's own ok is still to come.
-  enum class Relink : std::uint8_t { None, Down, Probing, Locating, Finishing };
   // PrintStep: what a reset reads of it (reset_recovery.hpp).
   struct Slot : PrintStep {
     std::string wire;            // "N12 G1 X1*34\n"
@@ -396,10 +393,7 @@ class Sender : private TimeSink, private PrintHistory {
   double last_busy_ = -1e9;
   int timeouts_in_row_ = 0;
 
-  Relink relink_ = Relink::None;  // after the port went away (sender_relink.cpp)
-  double relink_since_ = 0;
-  long long relink_line_ = 0;    // the last line the printer says it took
-  bool position_asked_ = false;
+  Relocator relocator_;  // after the port went away (sender_relink.cpp)
 
   // A reset's resume (sender_reset.cpp): what the print has done so far.
   long long last_enqueued_ = 0;     // the newest command in the print's order
