@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
+#include <utility>
 
 namespace gcode::procedural {
 
@@ -54,7 +54,7 @@ void join(const std::vector<Point2>& points, std::vector<SegmentEnd>& ends, Mesh
     while (true) {
       used[enter / 2] = true;
       const Point2& p = points[enter];
-      if (loop.empty() || std::hypot(p.x - loop.back().x, p.y - loop.back().y) > kSamePoint) loop.push_back(p);
+      if (loop.empty() || distance_squared(p, loop.back()) > kSamePoint * kSamePoint) loop.push_back(p);
       const std::uint32_t next = partner[enter ^ 1u];
       if (next == kNone) break;
       if (next / 2 == s) {
@@ -65,7 +65,7 @@ void join(const std::vector<Point2>& points, std::vector<SegmentEnd>& ends, Mesh
       enter = next;
     }
     if (!closed) continue;
-    while (loop.size() > 1 && std::hypot(loop.front().x - loop.back().x, loop.front().y - loop.back().y) <= kSamePoint)
+    while (loop.size() > 1 && distance_squared(loop.front(), loop.back()) <= kSamePoint * kSamePoint)
       loop.pop_back();
     if (loop.size() < 3) continue;
     const double area = signed_area(loop);
@@ -87,9 +87,13 @@ MeshSlicer::MeshSlicer(const Mesh& mesh) : mesh_(mesh) {
     bottom_[t] = std::min({a, b, c});
     top_[t] = std::max({a, b, c});
   }
+  // Sorted as (Z, index) pairs: no look-up through the index at each comparison, and triangles at
+  // the same Z in the order of the file, whatever the sort's algorithm.
+  std::vector<std::pair<double, std::uint32_t>> keyed(n);
+  for (std::size_t t = 0; t < n; ++t) keyed[t] = {bottom_[t], static_cast<std::uint32_t>(t)};
+  std::sort(keyed.begin(), keyed.end());
   by_bottom_.resize(n);
-  std::iota(by_bottom_.begin(), by_bottom_.end(), 0u);
-  std::sort(by_bottom_.begin(), by_bottom_.end(), [&](std::uint32_t a, std::uint32_t b) { return bottom_[a] < bottom_[b]; });
+  for (std::size_t i = 0; i < n; ++i) by_bottom_[i] = keyed[i].second;
 }
 
 void MeshSlicer::band(double lo, double hi) {
@@ -130,7 +134,7 @@ double MeshSlicer::band_lean() const {
     const Vec3& c = mesh_.vertices[tri[2]];
     const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z, vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
     const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
-    const double across = std::hypot(nx, ny);
+    const double across = std::sqrt(nx * nx + ny * ny);
     const double l = across > 0 ? std::fabs(nz) / across : kFlat + 1;
     if (l <= kFlat) lean = std::max(lean, l);
   }
