@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <utility>
 
 namespace gcode::procedural {
@@ -75,6 +76,35 @@ void join(const std::vector<Point2>& points, std::vector<SegmentEnd>& ends, Mesh
   }
 }
 
+// The indices of `keys` in ascending order of their values, equal values in the order of the
+// indices: a radix sort, stable, of the doubles' bits made to sort as unsigned integers (the
+// sign bit flipped, negative values' bits all flipped). Comparison sorts of a million triangles'
+// heights took 0.6-0.8 G instructions, a sixth of a run; this one 6 passes of counting.
+std::vector<std::uint32_t> order_by(const std::vector<double>& keys) {
+  constexpr int kBits = 11;
+  constexpr std::size_t kBuckets = std::size_t{1} << kBits;
+  const std::size_t n = keys.size();
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> from(n), to(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double key = keys[i] == 0 ? 0.0 : keys[i];  // -0 and +0 are one height
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, &key, sizeof bits);
+    bits = bits >> 63 ? ~bits : bits | (std::uint64_t{1} << 63);
+    from[i] = {bits, static_cast<std::uint32_t>(i)};
+  }
+  for (int shift = 0; shift < 64; shift += kBits) {
+    std::vector<std::size_t> start(kBuckets + 1, 0);
+    for (const auto& k : from) ++start[((k.first >> shift) & (kBuckets - 1)) + 1];
+    if (std::count(start.begin() + 1, start.end(), n) == 1) continue;  // one digit for all: nothing moves
+    for (std::size_t b = 1; b <= kBuckets; ++b) start[b] += start[b - 1];
+    for (const auto& k : from) to[start[(k.first >> shift) & (kBuckets - 1)]++] = k;
+    from.swap(to);
+  }
+  std::vector<std::uint32_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = from[i].second;
+  return order;
+}
+
 }  // namespace
 
 MeshSlicer::MeshSlicer(const Mesh& mesh) : mesh_(mesh) {
@@ -87,13 +117,7 @@ MeshSlicer::MeshSlicer(const Mesh& mesh) : mesh_(mesh) {
     bottom_[t] = std::min({a, b, c});
     top_[t] = std::max({a, b, c});
   }
-  // Sorted as (Z, index) pairs: no look-up through the index at each comparison, and triangles at
-  // the same Z in the order of the file, whatever the sort's algorithm.
-  std::vector<std::pair<double, std::uint32_t>> keyed(n);
-  for (std::size_t t = 0; t < n; ++t) keyed[t] = {bottom_[t], static_cast<std::uint32_t>(t)};
-  std::sort(keyed.begin(), keyed.end());
-  by_bottom_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) by_bottom_[i] = keyed[i].second;
+  by_bottom_ = order_by(bottom_);
 }
 
 void MeshSlicer::band(double lo, double hi) {
