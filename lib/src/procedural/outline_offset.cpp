@@ -38,7 +38,7 @@ double squared_distance_to_segment(const Point2& p, const Point2& a, const Point
   return ex * ex + ey * ey;
 }
 
-// Marks the points of loop[from..to] (indices modulo the size) to keep.
+// Marks the points of loop[from..to] to keep (to at most the size, which stands for point 0).
 void douglas_peucker(const Polygon& loop, std::size_t from, std::size_t to, double tolerance, std::vector<bool>& keep) {
   const std::size_t n = loop.size();
   std::vector<std::pair<std::size_t, std::size_t>> todo{{from, to}};
@@ -47,8 +47,10 @@ void douglas_peucker(const Polygon& loop, std::size_t from, std::size_t to, doub
     todo.pop_back();
     double worst = 0;
     std::size_t at = a;
-    for (std::size_t i = a + 1; i < b; ++i) {
-      const double d = squared_distance_to_segment(loop[i % n], loop[a % n], loop[b % n]);
+    const Point2& pa = loop[a % n];
+    const Point2& pb = loop[b % n];
+    for (std::size_t i = a + 1; i < b; ++i) {  // b <= n: only b itself wraps round
+      const double d = squared_distance_to_segment(loop[i], pa, pb);
       if (d > worst) worst = d, at = i;
     }
     if (worst <= tolerance * tolerance) continue;
