@@ -546,7 +546,7 @@ bool VirtualPrinter::process_M110(const Line& line) {
 // (Klipper, which answers while shut down: with its ok).
 bool VirtualPrinter::process_M112() {
   halt("Shutdown due to M112 command");
-  return shutdown_;
+  return flavour_.shut_down();
 }
 
 // M114: the position and the step counts (80 steps/mm XY, 400 Z).
@@ -583,7 +583,7 @@ bool VirtualPrinter::still_waiting(double t) {
       if (after_ == After::Nothing) return false;
       wait_ = after_ == After::Home ? Wait::Homing : after_ == After::Dwell ? Wait::Dwell : Wait::User;
       if (after_ == After::OwnPause) {
-        own_paused_ = true;
+        flavour_.own_pause();
         send(dialect_->paused());
       }
       wait_until_ = t + after_duration_;
@@ -638,10 +638,7 @@ void VirtualPrinter::finish(double t) {
   bool due = schedule_.take_after_command(number, started_layer_, fault);
   started_layer_ = 0;
   if (due) fire(fault, t);
-  if (restart_pending_) {
-    restart_pending_ = false;
-    reset(t);
-  }
+  if (flavour_.take_restart()) reset(t);
 }
 
 double VirtualPrinter::travelled(double t) const {

@@ -49,7 +49,7 @@ void VirtualPrinter::reset(double t) {
   homed_ = false;
   last_n_ = 0;
   halted_ = silent_ = false;
-  shutdown_ = own_paused_ = false;
+  flavour_.restarted();
   // The part is still on the bed: the layer count (the printer's own view
   // of heights) goes on.
   std::vector<std::string> greeting = dialect_->restart_greeting(config_.greeting);

@@ -47,8 +47,8 @@ bool newer_version(std::string_view wanted, std::string_view have) {
 // command while shut down. Not in the executed log: it never ran.
 bool VirtualPrinter::refused(const Line& line) {
   std::vector<std::string> answer;
-  if (shutdown_ && !works_while_shut_down(line)) {
-    answer = dialect_->refused_while_shut_down(shutdown_reason_);
+  if (flavour_.shut_down() && !works_while_shut_down(line)) {
+    answer = dialect_->refused_while_shut_down(flavour_.shutdown_reason());
   } else if (dialect_->behaviour().moves_need_homing && !homed_ && moves_axes(line)) {
     answer = {dialect_->not_homed(state_.position[kX], state_.position[kY], state_.position[kZ],
                                   state_.position[kE])};
@@ -78,14 +78,13 @@ bool VirtualPrinter::moves_axes(const Line& line) const {
 // stops, it says so, and answers every command with an error until
 // FIRMWARE_RESTART (a command that was waiting is answered so too).
 void VirtualPrinter::halt(std::string_view why) {
-  if (halted_ || shutdown_) return;
+  if (halted_ || flavour_.shut_down()) return;
   send(dialect_->halted());
   if (!dialect_->behaviour().shutdown_answers) {
     halted_ = true;
     return;
   }
-  shutdown_ = true;
-  shutdown_reason_ = std::string(why);
+  flavour_.shut_down_for(why);
   planner_.clear();
   lengths_.clear();
   block_numbers_.clear();
@@ -98,7 +97,7 @@ void VirtualPrinter::halt(std::string_view why) {
 bool VirtualPrinter::process_extended(const Line& line) {
   std::string_view code = line.code();
   code = code.substr(0, code.find(' '));
-  if (code == "FIRMWARE_RESTART" || code == "RESTART") restart_pending_ = true;
+  if (code == "FIRMWARE_RESTART" || code == "RESTART") flavour_.restart_after_ok();
   return true;
 }
 
@@ -133,10 +132,7 @@ bool VirtualPrinter::process_M115_version(const Line& line, double t) {
 // The user answered: the wait ends (its command's ok follows); an own
 // pause says it resumed.
 bool VirtualPrinter::end_user_wait() {
-  if (own_paused_) {
-    own_paused_ = false;
-    send(dialect_->resumed());
-  }
+  if (flavour_.take_resume()) send(dialect_->resumed());
   return false;
 }
 

@@ -50,6 +50,7 @@
 
 #include "gcode/core/machine_state.hpp"
 #include "gcode/serial/sim/virtual_dialect.hpp"
+#include "gcode/serial/sim/virtual_flavour_state.hpp"
 #include "gcode/serial/sim/virtual_printer_options.hpp"
 #include "gcode/serial/sim/virtual_wire.hpp"
 
@@ -114,7 +115,7 @@ class VirtualPrinter {
   int layer() const { return layer_; }
   // Halted (Marlin's kill(): silent from then on) or shut down (Klipper:
   // every command refused until FIRMWARE_RESTART).
-  bool halted() const { return halted_ || shutdown_; }
+  bool halted() const { return halted_ || flavour_.shut_down(); }
   const VirtualPrinterStats& stats() const { return stats_; }
   const VirtualPrinterConfig& config() const { return config_; }
   // The time the planner was empty between moves, as a fraction of the time
@@ -243,10 +244,7 @@ class VirtualPrinter {
   long long last_n_ = 0;
   double hotend_ = 20, bed_ = 20, hotend_target_ = 0, bed_target_ = 0, temp_time_ = 0;
   bool halted_ = false, silent_ = false, disconnected_ = false;
-  bool shutdown_ = false;        // Klipper's shutdown: commands refused until FIRMWARE_RESTART
-  std::string shutdown_reason_;
-  bool own_paused_ = false;      // Prusa's own pause (M601) is on
-  bool restart_pending_ = false; // FIRMWARE_RESTART done: the restart follows its ok
+  FlavourState flavour_;         // Klipper's shutdown, Prusa's own pause (virtual_printer_flavour.cpp)
   FaultSchedule schedule_;
   LinkOutage outage_;
   bool homed_ = false;
