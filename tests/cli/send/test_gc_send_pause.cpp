@@ -8,9 +8,10 @@
 //    before the block; the rest is executed exactly (nothing lost, nothing
 //    twice);
 //  * `pause now`: the nozzle's path from the request to the end of motion,
-//    measured from the log (16-block planner, 4-slot queue, 250000 baud), at
-//    most 3.2 mm, and what gc-send reports agrees, on a printer at the
-//    file's speed and on one twice as fast that gc-send is not told of;
+//    measured from the log on the simulated clock (16-block planner, 4-slot
+//    queue, 250000 baud), at most the planner's 16 moves and the pacer's 2,
+//    and what gc-send reports agrees, on a printer at the file's speed and
+//    on one twice as fast that gc-send is not told of;
 //  * @pause, ;@pause and --pause-on M0 hold the host and are not sent;
 //  * the FIFO is refused when it is a regular file or writable by others;
 //  * cancel ends safely with exit status 0.
