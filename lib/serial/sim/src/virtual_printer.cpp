@@ -529,9 +529,10 @@ bool VirtualPrinter::process_M109(const Line& line, double t) {
   return false;
 }
 
-// M105: the temperatures on the ok line.
+// M105: the temperatures on the ok line; a Klipper shut down answers
+// "ok T:0" (gcode.py's cmd_default: its heaters are gone with the MCU).
 bool VirtualPrinter::process_M105() {
-  send(dialect_->temperature_ok(temperatures()));
+  send(shutdown_ ? std::string("ok T:0") : dialect_->temperature_ok(temperatures()));
   ok_sent_ = true;
   return true;
 }
