@@ -201,7 +201,7 @@ TEST_CASE("examples/procedural: every example made, drawn by gc-layers --svg and
                " SCALE=small print");
   INFO(r.err);
   REQUIRE(r.status == 0);
-  for (const char* name : {"dish", "sphere", "heart", "globe"}) {
+  for (const char* name : {"dish", "sphere", "heart", "globe", "vase"}) {
     INFO(name);
     CHECK(std::filesystem::file_size(dir + "/" + name + ".gcode") > 1000);
     CHECK(gctest::read_file(dir + "/" + name + ".svg").find("<svg") != std::string::npos);

@@ -21,15 +21,24 @@ namespace procedural = gcode::procedural;
 
 using Options = gcode::cli::ShapeToolOptions;
 
+// A regular file in one read (a mesh may be 50 MB: a stream copied byte by byte took a tenth of a run);
+// a pipe, whose size is unknown, through the stream.
 std::string text_of(const std::string& path, const char* option) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw gcode::cli::InputError(fmt::format("{} {}: cannot open it", option, path));
-  return {std::istreambuf_iterator<char>(in), {}};
+  const std::streamoff size = in.seekg(0, std::ios::end) ? static_cast<std::streamoff>(in.tellg()) : -1;
+  in.clear();
+  if (size < 0) return {std::istreambuf_iterator<char>(in), {}};
+  std::string text(static_cast<std::size_t>(size), '\0');
+  in.seekg(0);
+  if (!in.read(text.data(), size)) throw gcode::cli::InputError(fmt::format("{} {}: cannot read it", option, path));
+  return text;
 }
 
 procedural::ShapePath path_of(const Options& o) {
   if (o.mesh.empty()) return procedural::ShapePath(o.shape);
-  return procedural::mesh_vase(procedural::read_stl(text_of(o.mesh, "--mesh"), o.mesh), o.shape, o.mesh);
+  procedural::Mesh mesh = procedural::read_stl(text_of(o.mesh, "--mesh"), o.mesh);  // the file's bytes freed here
+  return procedural::mesh_vase(std::move(mesh), o.shape, o.mesh);
 }
 
 int write(Options& o, gcode::cli::Tool& tool) {

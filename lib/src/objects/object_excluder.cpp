@@ -42,7 +42,9 @@ void ObjectExcluder::line(const TrackedLine& t, Emitter& out) {
   in_retracted_ = RetractionTracker::after(in_retracted_, t.move);
   last_ = t.state;
   any_line_ = true;
-  if (t.region == Region::Layer && is_motion_line(t.move) && leaves_out(object, t.layer)) {
+  const bool resumed_part = start_layer_ > 0 && t.layer == 0;
+  const bool in_layer = t.region == Region::Layer || resumed_part;
+  if (in_layer && is_motion_line(t.move) && leaves_out(object, resumed_part ? start_layer_ : t.layer)) {
     if (!catch_up_.behind()) noted_ = false;
     catch_up_.leave(t.before, in_before);
     ++dropped_;

@@ -18,7 +18,8 @@ void Mesh::place(double scale, double center_x, double center_y) {
   for (Vec3& v : vertices) v = {v.x + dx, v.y + dy, v.z - b.min[2]};
 }
 
-MeshBuilder::MeshBuilder(double merge_distance) : merge_(merge_distance), heads_(1024, kNone) {}
+MeshBuilder::MeshBuilder(double merge_distance)
+    : merge_(merge_distance), cell_(std::fmax(merge_distance * kCellMerges, 1e-9)), heads_(1024, kNone) {}
 
 void MeshBuilder::reserve(std::size_t triangles) {
   mesh_.triangles.reserve(triangles);
@@ -58,14 +59,23 @@ bool MeshBuilder::find_in(const Cell& cell, const Vec3& p, std::uint32_t& index)
 }
 
 std::uint32_t MeshBuilder::weld(const Vec3& p) {
-  const Cell cell = {static_cast<std::int64_t>(std::floor(p.x / merge_)),
-                     static_cast<std::int64_t>(std::floor(p.y / merge_)),
-                     static_cast<std::int64_t>(std::floor(p.z / merge_))};
+  // A neighbour cell can hold a corner within the merge distance only if p is that close to the
+  // border between them (cells are kCellMerges merge distances wide; the reach a little more, for rounding).
+  constexpr double kReach = 1.001 / kCellMerges;
+  const double at[3] = {p.x / cell_, p.y / cell_, p.z / cell_};
+  Cell cell{};
+  int from[3], to[3];
+  for (int k = 0; k < 3; ++k) {
+    const double f = std::floor(at[k]);
+    cell[k] = static_cast<std::int64_t>(f);
+    from[k] = at[k] - f <= kReach ? -1 : 0;
+    to[k] = at[k] - f >= 1 - kReach ? 1 : 0;
+  }
   std::uint32_t index = 0;
   if (find_in(cell, p, index)) return index;
-  for (int dx = -1; dx <= 1; ++dx)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dz = -1; dz <= 1; ++dz)
+  for (int dx = from[0]; dx <= to[0]; ++dx)
+    for (int dy = from[1]; dy <= to[1]; ++dy)
+      for (int dz = from[2]; dz <= to[2]; ++dz)
         if ((dx != 0 || dy != 0 || dz != 0) && find_in({cell[0] + dx, cell[1] + dy, cell[2] + dz}, p, index))
           return index;
   index = static_cast<std::uint32_t>(mesh_.vertices.size());

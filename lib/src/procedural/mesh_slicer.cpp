@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
+#include <cstring>
+#include <utility>
 
 namespace gcode::procedural {
 
@@ -54,7 +55,7 @@ void join(const std::vector<Point2>& points, std::vector<SegmentEnd>& ends, Mesh
     while (true) {
       used[enter / 2] = true;
       const Point2& p = points[enter];
-      if (loop.empty() || std::hypot(p.x - loop.back().x, p.y - loop.back().y) > kSamePoint) loop.push_back(p);
+      if (loop.empty() || distance_squared(p, loop.back()) > kSamePoint * kSamePoint) loop.push_back(p);
       const std::uint32_t next = partner[enter ^ 1u];
       if (next == kNone) break;
       if (next / 2 == s) {
@@ -65,7 +66,7 @@ void join(const std::vector<Point2>& points, std::vector<SegmentEnd>& ends, Mesh
       enter = next;
     }
     if (!closed) continue;
-    while (loop.size() > 1 && std::hypot(loop.front().x - loop.back().x, loop.front().y - loop.back().y) <= kSamePoint)
+    while (loop.size() > 1 && distance_squared(loop.front(), loop.back()) <= kSamePoint * kSamePoint)
       loop.pop_back();
     if (loop.size() < 3) continue;
     const double area = signed_area(loop);
@@ -73,6 +74,35 @@ void join(const std::vector<Point2>& points, std::vector<SegmentEnd>& ends, Mesh
     if (area < 0) std::reverse(loop.begin(), loop.end());
     out.loops.push_back(std::move(loop));
   }
+}
+
+// The indices of `keys` in ascending order of their values, equal values in the order of the
+// indices: a radix sort, stable, of the doubles' bits made to sort as unsigned integers (the
+// sign bit flipped, negative values' bits all flipped). Comparison sorts of a million triangles'
+// heights took 0.6-0.8 G instructions, a sixth of a run; this one 6 passes of counting.
+std::vector<std::uint32_t> order_by(const std::vector<double>& keys) {
+  constexpr int kBits = 11;
+  constexpr std::size_t kBuckets = std::size_t{1} << kBits;
+  const std::size_t n = keys.size();
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> from(n), to(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double key = keys[i] == 0 ? 0.0 : keys[i];  // -0 and +0 are one height
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, &key, sizeof bits);
+    bits = bits >> 63 ? ~bits : bits | (std::uint64_t{1} << 63);
+    from[i] = {bits, static_cast<std::uint32_t>(i)};
+  }
+  for (int shift = 0; shift < 64; shift += kBits) {
+    std::vector<std::size_t> start(kBuckets + 1, 0);
+    for (const auto& k : from) ++start[((k.first >> shift) & (kBuckets - 1)) + 1];
+    if (std::count(start.begin() + 1, start.end(), n) == 1) continue;  // one digit for all: nothing moves
+    for (std::size_t b = 1; b <= kBuckets; ++b) start[b] += start[b - 1];
+    for (const auto& k : from) to[start[(k.first >> shift) & (kBuckets - 1)]++] = k;
+    from.swap(to);
+  }
+  std::vector<std::uint32_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = from[i].second;
+  return order;
 }
 
 }  // namespace
@@ -87,9 +117,7 @@ MeshSlicer::MeshSlicer(const Mesh& mesh) : mesh_(mesh) {
     bottom_[t] = std::min({a, b, c});
     top_[t] = std::max({a, b, c});
   }
-  by_bottom_.resize(n);
-  std::iota(by_bottom_.begin(), by_bottom_.end(), 0u);
-  std::sort(by_bottom_.begin(), by_bottom_.end(), [&](std::uint32_t a, std::uint32_t b) { return bottom_[a] < bottom_[b]; });
+  by_bottom_ = order_by(bottom_);
 }
 
 void MeshSlicer::band(double lo, double hi) {
@@ -130,7 +158,7 @@ double MeshSlicer::band_lean() const {
     const Vec3& c = mesh_.vertices[tri[2]];
     const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z, vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
     const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
-    const double across = std::hypot(nx, ny);
+    const double across = std::sqrt(nx * nx + ny * ny);
     const double l = across > 0 ? std::fabs(nz) / across : kFlat + 1;
     if (l <= kFlat) lean = std::max(lean, l);
   }

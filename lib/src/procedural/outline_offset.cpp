@@ -29,15 +29,16 @@ Polygon from_clipper(const ClipperLib::Path& path) {
   return loop;
 }
 
-double distance_to_segment(const Point2& p, const Point2& a, const Point2& b) {
+double squared_distance_to_segment(const Point2& p, const Point2& a, const Point2& b) {
   const double dx = b.x - a.x, dy = b.y - a.y;
   const double l2 = dx * dx + dy * dy;
   double t = l2 > 0 ? ((p.x - a.x) * dx + (p.y - a.y) * dy) / l2 : 0;
   t = std::fmax(0, std::fmin(1, t));
-  return std::hypot(p.x - a.x - t * dx, p.y - a.y - t * dy);
+  const double ex = p.x - a.x - t * dx, ey = p.y - a.y - t * dy;
+  return ex * ex + ey * ey;
 }
 
-// Marks the points of loop[from..to] (indices modulo the size) to keep.
+// Marks the points of loop[from..to] to keep (to at most the size, which stands for point 0).
 void douglas_peucker(const Polygon& loop, std::size_t from, std::size_t to, double tolerance, std::vector<bool>& keep) {
   const std::size_t n = loop.size();
   std::vector<std::pair<std::size_t, std::size_t>> todo{{from, to}};
@@ -46,11 +47,13 @@ void douglas_peucker(const Polygon& loop, std::size_t from, std::size_t to, doub
     todo.pop_back();
     double worst = 0;
     std::size_t at = a;
-    for (std::size_t i = a + 1; i < b; ++i) {
-      const double d = distance_to_segment(loop[i % n], loop[a % n], loop[b % n]);
+    const Point2& pa = loop[a % n];
+    const Point2& pb = loop[b % n];
+    for (std::size_t i = a + 1; i < b; ++i) {  // b <= n: only b itself wraps round
+      const double d = squared_distance_to_segment(loop[i], pa, pb);
       if (d > worst) worst = d, at = i;
     }
-    if (worst <= tolerance) continue;
+    if (worst <= tolerance * tolerance) continue;
     keep[at % n] = true;
     todo.push_back({a, at});
     todo.push_back({at, b});
@@ -74,7 +77,7 @@ bool crosses_itself(const Polygon& loop) {
   const std::size_t n = loop.size();
   double perimeter = 0;
   for (std::size_t i = 0; i < n; ++i)
-    perimeter += std::hypot(loop[(i + 1) % n].x - loop[i].x, loop[(i + 1) % n].y - loop[i].y);
+    perimeter += distance(loop[i], loop[(i + 1) % n]);
   const double size = 2 * perimeter / static_cast<double>(n) + 1e-9;
   auto cell = [size](double v) { return static_cast<std::int64_t>(std::floor(v / size)); };
   std::vector<std::pair<std::int64_t, std::size_t>> binned;  // (cell, segment)
@@ -107,7 +110,7 @@ Polygon direct_offset(const Polygon& loop, double d, double arc_tolerance) {
   for (std::size_t i = 0; i < n; ++i) {
     const Point2& a = loop[i];
     const Point2& b = loop[(i + 1) % n];
-    const double len = std::hypot(b.x - a.x, b.y - a.y);
+    const double len = distance(a, b);
     if (len == 0) return {};
     normal[i] = {-(b.y - a.y) / len, (b.x - a.x) / len};
   }
@@ -186,7 +189,7 @@ Polygon simplify_loop(const Polygon& loop, double tolerance) {
   std::size_t far = 0;
   double best = -1;
   for (std::size_t i = 1; i < n; ++i) {
-    const double d = std::hypot(loop[i].x - loop[0].x, loop[i].y - loop[0].y);
+    const double d = distance_squared(loop[i], loop[0]);
     if (d > best) best = d, far = i;
   }
   std::vector<bool> keep(n, false);

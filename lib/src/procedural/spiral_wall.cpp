@@ -17,7 +17,7 @@ class LoopWalk {
     for (std::size_t i = 0; i < loop.size(); ++i) {
       const Point2& a = loop[i];
       const Point2& b = loop[(i + 1) % loop.size()];
-      at_[i + 1] = at_[i] + std::hypot(b.x - a.x, b.y - a.y);
+      at_[i + 1] = at_[i] + distance(a, b);
     }
   }
   double length() const { return at_.back(); }
@@ -30,7 +30,7 @@ class LoopWalk {
       const Point2& b = loop_[(i + 1) % loop_.size()];
       const double dx = b.x - a.x, dy = b.y - a.y, l2 = dx * dx + dy * dy;
       const double t = l2 > 0 ? std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / l2, 0.0, 1.0) : 0;
-      const double d = std::hypot(p.x - a.x - t * dx, p.y - a.y - t * dy);
+      const double ex = p.x - a.x - t * dx, ey = p.y - a.y - t * dy, d = ex * ex + ey * ey;  // squared
       if (d < best) best = d, where = at_[i] + t * (at_[i + 1] - at_[i]);
     }
     return where;
@@ -103,7 +103,7 @@ void spiral_wall(MeshSlicer& slicer, const SpiralWallOptions& o, Point2 from, st
         const double z = o.base + (k + f) * o.pitch;
         const PathPoint point{p.x, p.y, z, std::min(z - o.base, o.pitch)};
         // Two points closer than X and Y are written would make a move of Z alone: the later one stands for both.
-        if (!layer.points.empty() && std::hypot(p.x - layer.points.back().x, p.y - layer.points.back().y) < kMinStep)
+        if (!layer.points.empty() && distance_squared(p, {layer.points.back().x, layer.points.back().y}) < kMinStep * kMinStep)
           layer.points.back() = point;
         else
           layer.points.push_back(point);

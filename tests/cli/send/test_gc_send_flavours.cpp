@@ -116,8 +116,10 @@ TEST_CASE("gc-send on Klipper: '!!' errors and unknown commands are warnings, th
   // A move before G28: Klipper refuses it ("!! Must home axis first") and
   // says ok; M201 is Marlin's, not Klipper's.
   gctest::write_file(file, "G1 X5 F3000\nM201 X1000 Y1000\nG28\n" + gctest::read_file(pieces_of(kFlavours[1].fixture)));
-  auto r = gctest::run(quote(tool_path("gc-send")) + " --port virtual:" + printer(kFlavours[1]) + ",log=" + log + " " +
-                       quote(file));
+  // On the simulated clock: no overdue answer, so no question of gc-send's
+  // own, however loaded the machine.
+  auto r = gctest::run(quote(tool_path("gc-send")) + " --port virtual:" + printer(kFlavours[1]) +
+                       ",simulated-clock,log=" + log + " " + quote(file));
   INFO(r.err);
   REQUIRE(r.status == 0);
   CHECK(r.err.find("printer error: Must home axis first") != std::string::npos);
@@ -140,10 +142,10 @@ TEST_CASE("gc-send on Prusa: its own pause (M601) and M600 wait for the user, no
                       quote(pieces_of(kFlavours[2].fixture)) + " | awk '/^;LAYER_CHANGE/ { if (++n == 3) print \"M600\" } "
                       "{ print }' > " + quote(file))
               .status == 0);
-  // The user takes 60 printer seconds for each, three wall seconds; the
-  // timeout is a quarter of one.
+  // The user takes 60 printer seconds for each, three seconds of gc-send's
+  // (simulated) clock; the timeout is a quarter of one.
   auto r = gctest::run(quote(tool_path("gc-send")) + " -v --timeout 0.25 --port virtual:firmware=prusa,time-scale=20,"
-                       "instant-moves,heat-rate=1000,user-seconds=60,log=" + log + " " + quote(file));
+                       "instant-moves,heat-rate=1000,user-seconds=60,simulated-clock,log=" + log + " " + quote(file));
   INFO(r.err);
   REQUIRE(r.status == 0);
   CHECK(r.err.find("printer action: paused") != std::string::npos);

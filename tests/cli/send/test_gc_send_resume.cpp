@@ -277,11 +277,7 @@ TEST_CASE("gc-send --resume after a kill -9 inside gc-send's closing M400: the p
 
 TEST_CASE("gc-send --resume inside a layer: the resumed session is in that layer until the next, in its progress, its "
           "journal and a reset's warning",
-          "[gc-send][resume][reset][!mayfail]") {
-  // KNOWN BUG, reported and left open: since gc-send numbers its own probes
-  // and polls, a resumed session that resets counts the layer it resumed in
-  // once more (the reset's warning and the progress say layer 2 in this
-  // one-layer file). The test runs and reports it; it does not fail the suite.
+          "[gc-send][resume][reset]") {
   std::string dir = gctest::temp_dir();
   std::string input = subdivided_part(dir);
   std::string port = dir + "/printer";

@@ -6,6 +6,7 @@
 // middle of its block (gc-send's cancel) stops there.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <string>
 
 #include "fn_stage.hpp"
@@ -115,4 +116,40 @@ TEST_CASE("object excluder: the nozzle a left-out block left retracted is primed
   const std::string out = without(plate, 1);
   CHECK_THAT(out, Catch::EndsWith("; printing object A id:0 copy 0\nG1 X10 Y10 F6000\nG1 E1 F2100\nG1 X0 Y10 E1 F1200\n"
                                   "; stop printing object A id:0 copy 0\n"));
+}
+
+TEST_CASE("object excluder: a stream that begins inside a layer leaves the object out there, and its lines go on in their own layer count",
+          "[object_excluder]") {
+  // gc-send --resume: the rest of layer 7, with no marker before it.
+  const char* const rest =
+      "G90\nM83\n"
+      "; printing object A id:0 copy 0\nG1 X0 Y0 F6000\nG1 X10 Y0 E1 F1200\n; stop printing object A id:0 copy 0\n"
+      "; printing object B id:1 copy 0\nG1 X50 Y50 F6000\nG1 X60 Y50 E1 F1200\n; stop printing object B id:1 copy 0\n";
+  gcode::LayerMarkers markers;
+  gcode::Pipeline p(markers);
+  p.decide_layer_mode(gcode::LayerMode::Markers);  // as gc-send's resume decides it
+  gcode::ObjectExcluder excluder(p.precision());
+  excluder.start_inside_layer(7);
+  excluder.exclude(1);
+  int highest_layer_downstream = -1;
+  gctest::FnStage downstream([&](const gcode::TrackedLine& t, gcode::Emitter& out) {
+    highest_layer_downstream = std::max(highest_layer_downstream, t.layer);
+    out.pass(t);
+  });
+  p.add(excluder);
+  p.add(downstream);
+  const std::string out = gctest::run_stages(p, rest);
+  CHECK(out.find("G1 X60 Y50 E1") == std::string::npos);
+  CHECK(out.find("G1 X10 Y0 E1 F1200") != std::string::npos);
+  CHECK(excluder.dropped_extrusions() == 1);
+  // The lines are the pipeline's start (layer 0): the one who resumed
+  // places them in layer 7, once.
+  CHECK(highest_layer_downstream == 0);
+}
+
+TEST_CASE("object excluder: without start_inside_layer, lines before the first layer are start code and stay",
+          "[object_excluder]") {
+  const char* const start =
+      "G90\nM83\n; printing object B id:1 copy 0\nG1 X50 Y50 F6000\nG1 X60 Y50 E1 F1200\n; stop printing object B id:1 copy 0\n";
+  CHECK(without(start, 1).find("G1 X60 Y50 E1 F1200") != std::string::npos);
 }

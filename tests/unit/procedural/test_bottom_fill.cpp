@@ -8,6 +8,7 @@
 #include "gcode/procedural/bottom_fill.hpp"
 #include "gcode/procedural/mesh_slicer.hpp"
 #include "gcode/procedural/stl_reader.hpp"
+#include "mesh/loop_distance.hpp"
 #include "mesh/mesh_maker.hpp"
 
 namespace test_bottom_fill {
@@ -26,6 +27,27 @@ TEST_CASE("bottom_fill: a square's loops one line width apart, outermost first",
     for (const gcode::Point2& p : loops[i]) left = std::min(left, p.x);
     CHECK(left == Approx(0.5 * static_cast<double>(i)).margin(1e-4));
   }
+}
+
+TEST_CASE("bottom_fill: a wavy loop's loops k line widths from it, as few points as it has", "[shape][mesh]") {
+  // Bumps sharper than the line width fold the offsets (Clipper's case); each loop is the outline
+  // moved in by k line widths, so its corners lie k widths from the outline, and the loops do not
+  // gather points as they shrink.
+  gcode::Polygon wavy;
+  for (int i = 0; i < 290; ++i) {
+    const double a = 2 * M_PI * i / 290, r = 10 + 1.5 * std::sin(8 * a);
+    wavy.push_back({r * std::cos(a), r * std::sin(a)});
+  }
+  const auto loops = gcode::procedural::fill_loops(wavy, 0.5, 0.01);
+  REQUIRE(loops.size() >= 17);
+  std::size_t most = 0;
+  for (std::size_t k = 1; k < loops.size(); ++k) {
+    most = std::max(most, loops[k].size());
+    INFO("loop " << k);
+    for (const gcode::Point2& p : loops[k])
+      CHECK(meshtest::loop_distance(p, wavy) == Approx(0.5 * static_cast<double>(k)).margin(0.01 / 4));
+  }
+  CHECK(most <= 2 * wavy.size());
 }
 
 TEST_CASE("bottom_fill: layers at their heights, the last ending outside", "[shape][mesh]") {

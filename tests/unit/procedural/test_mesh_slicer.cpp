@@ -45,6 +45,23 @@ TEST_CASE("mesh_slicer: a cylinder's section is its polygon, at any height, a co
   }
 }
 
+TEST_CASE("mesh_slicer: a mesh below and above z = 0, swept upwards: every section whole", "[shape][mesh]") {
+  // Triangles sorted by the bits of their lowest Z: negative heights, -0 and +0 in their places.
+  meshtest::TestMesh prism = meshtest::twisted_prism(12, 15, 60, 30);
+  for (meshtest::Tri& t : prism.triangles)
+    for (meshtest::P3& p : t) p.z -= 7.5;
+  const Mesh mesh = mesh_of(prism);
+  MeshSlicer slicer(mesh);
+  for (double z = -7.4; z < 7.5; z += 0.25) {
+    INFO(z);
+    slicer.band(z, z);
+    const MeshSection s = slicer.section(z);
+    REQUIRE(s.loops.size() == 1);
+    CHECK(s.open_ends == 0);
+    CHECK(loop_area(s.loops[0]) > 560);
+  }
+}
+
 TEST_CASE("mesh_slicer: a hole in the mesh, two islands, the lean of a band", "[shape][mesh]") {
   meshtest::TestMesh holed = meshtest::cylinder(10, 6, 32);
   holed.triangles.erase(holed.triangles.begin());

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "gcode/procedural/outline_offset.hpp"
+#include "mesh/loop_distance.hpp"
 
 namespace test_outline_offset {
 
@@ -20,17 +21,7 @@ TEST_CASE("outline_offset: an L moved inward: straight edges, an arc round the c
   REQUIRE(pieces.size() == 1);
   CHECK(loop_area(pieces[0]) > 0);
   // Every point 1 mm from the L's outline (round the concave corner (4, 4) too), within the arc tolerance.
-  for (const gcode::Point2& p : pieces[0]) {
-    double d = 1e9;
-    for (std::size_t i = 0; i < l.size(); ++i) {
-      const gcode::Point2& a = l[i];
-      const gcode::Point2& b = l[(i + 1) % l.size()];
-      const double dx = b.x - a.x, dy = b.y - a.y;
-      const double t = std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / (dx * dx + dy * dy), 0.0, 1.0);
-      d = std::min(d, std::hypot(p.x - a.x - t * dx, p.y - a.y - t * dy));
-    }
-    CHECK(d == Approx(1).margin(0.006));
-  }
+  for (const gcode::Point2& p : pieces[0]) CHECK(meshtest::loop_distance(p, l) == Approx(1).margin(0.006));
   CHECK(offset_inward(l, 1.9, 0.005).size() == 1);  // arms 4 mm wide: 1.9 leaves a thin L
   CHECK(offset_inward(l, 5, 0.005).empty());
   CHECK(offset_inward({{0, 0}, {10, 0}, {10, 1}, {0, 1}}, 0.6, 0.005).empty());

@@ -3,6 +3,7 @@
 // the bed, an outline to draw. One set of types for every piece.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <vector>
 
 namespace gcode {
@@ -12,6 +13,13 @@ struct Point2 {
 };
 
 using Polygon = std::vector<Point2>;
+
+// Squared, for comparisons (no square root; std::hypot, careful of overflow
+// that millimetres never reach, costs ten times a multiplication).
+inline double distance_squared(const Point2& a, const Point2& b) {
+  return (b.x - a.x) * (b.x - a.x) + (b.y - a.y) * (b.y - a.y);
+}
+inline double distance(const Point2& a, const Point2& b) { return std::sqrt(distance_squared(a, b)); }
 
 // An axis-aligned box in XY. Default-constructed it is empty: add() grows it.
 struct Box2 {

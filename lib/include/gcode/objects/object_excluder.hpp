@@ -50,6 +50,10 @@ class ObjectExcluder : public Stage {
   // the labels of the printed part): the names, their numbering and the
   // object the stream stands in, as `before` left them.
   void continue_from(const ObjectTracker& before) { tracker_ = before; }
+  // A stream that begins inside layer `layer` (gc-send --resume): its lines
+  // before its first layer are of that layer, not start code, and may be
+  // left out. The lines go on as they came.
+  void start_inside_layer(int layer) { start_layer_ = layer; }
   // Motion lines left out so far, and extrusions among them.
   std::uint64_t dropped_lines() const { return dropped_; }
   std::uint64_t dropped_extrusions() const { return dropped_extrusions_; }
@@ -68,6 +72,7 @@ class ObjectExcluder : public Stage {
   StreamCatchUp catch_up_;
   ExcludeOptions options_;
   std::vector<int> from_layer_;  // per object: 0 kept, else the first layer left out
+  int start_layer_ = 0;          // see start_inside_layer
   double in_retracted_ = 0;      // the input's retraction (RetractionTracker)
   MachineState last_;            // the input's state after the last line
   bool any_line_ = false;

@@ -27,8 +27,8 @@ struct BottomFillOptions {
 void bottom_fill(MeshSlicer& slicer, const BottomFillOptions& options, std::vector<ShapeLayer>& out,
                  HeightProblems& problems);
 
-// The loops that fill `outline`, outermost first (inner pieces after the
-// loop they lie in).
+// The loops that fill `outline`, outermost first: `outline`, then ring by
+// ring the pieces of `outline` moved in by 1, 2, ... line widths.
 std::vector<Polygon> fill_loops(const Polygon& outline, double line_width, double tolerance);
 
 }  // namespace gcode::procedural

@@ -60,18 +60,16 @@ void PrintedObjects::read_line(std::string_view text) {
 
 LiveExcluder::LiveExcluder(ObjectCancel& owner, const Precision& precision, std::uint64_t line_offset,
                            int resumed_layer)
-    : owner_(owner), excluder_(precision), line_offset_(line_offset), resumed_layer_(resumed_layer) {}
+    : owner_(owner), excluder_(precision), line_offset_(line_offset) {
+  // The rest of the layer a resume stopped in may be left out (the excluder
+  // leaves out only lines of layers); downstream, those lines stay in the
+  // pipeline's own count, where the session places them.
+  if (resumed_layer > 0) excluder_.start_inside_layer(resumed_layer);
+}
 
 void LiveExcluder::line(const TrackedLine& t, Emitter& out) {
   last_line_ = t.raw.number + line_offset_;
-  if (resumed_layer_ > 0 && t.layer == 0) {
-    // The rest of the layer a resume stopped in: the excluder leaves out
-    // only lines of layers.
-    const TrackedLine in_layer{t.raw, t.line, t.move, t.before, t.state, Region::Layer, resumed_layer_, t.feature, t.origin};
-    excluder_.line(in_layer, out);
-  } else {
-    excluder_.line(t, out);
-  }
+  excluder_.line(t, out);
   // An object named by this line is left out from the next one on: the
   // label line itself moves nothing.
   tell_owner();

@@ -284,7 +284,9 @@ void Sender::send_own(InFlight::Own kind, double now) {
   s.after = before.after;
   s.track = before.track;
   s.prev = prev;
-  s.restore = 0;
+  // Inside a way back after a reset, an own line is of it: a resume that
+  // finds the printer took it makes the way back again.
+  s.restore = before.restore;
   s.long_running = s.unbounded = s.silent_wait = s.move = s.drains = s.closing = false;
   s.temperature_query = kind == InFlight::Own::Question;
   // M105 is answered at once; the probe waits for a planner block.

@@ -163,9 +163,12 @@ bool Sender::resubmit_after_reset(long long back, const std::vector<std::string>
   const MachineState target = back > 0 ? held(back).after : MachineState{};
   const ResumeTrack track = back > 0 ? held(back).track : ResumeTrack{};
   const int layer = back > 0 ? held(back).layer : 0;
-  next_send_ = next_number_;
-  highest_sent_ = next_number_ - 1;
-  handshake_number_ = next_number_ - 1;
+  // The numbers that never went out (commands the pacer or a block held)
+  // are free again: the handshake names the last number that went out, whose
+  // journal record was written before it did.
+  next_number_ = next_send_ = highest_sent_ + 1;
+  handshake_number_ = highest_sent_;
+  journaled_ = std::min(journaled_, highest_sent_);
   last_enqueued_ = back;
   machine_ = MachineState{};
   track_ = track;
@@ -183,6 +186,10 @@ bool Sender::resubmit_after_reset(long long back, const std::vector<std::string>
     }
     enqueue(check.problem == LineProblem::Shortened ? check.command : a.command, a.source_line, a.layer);
   }
+  // The way back's first line is journaled before the handshake goes out: a
+  // gc-send stopped between the two finds, on --resume, the printer at the
+  // handshake's number and the way back right after it in the journal.
+  if (!sequence.empty()) journal_first_send(handshake_number_ + 1);
   return true;
 }
 

@@ -79,7 +79,6 @@ class LiveExcluder final : public Stage {
   ObjectCancel& owner_;
   ObjectExcluder excluder_;
   std::uint64_t line_offset_;
-  int resumed_layer_;
   std::uint64_t last_line_ = 0;
   std::size_t known_ = 0;  // names the owner has been told of
 };
