@@ -85,6 +85,11 @@ TEST_CASE("gc-send flavours: a FIFO pause and resume on each firmware, every com
     gcode::MachineState after = gctest::state_after(r.log, c.prefix + c.block);
     for (int a : {gcode::kX, gcode::kY, gcode::kZ, gcode::kE}) CHECK(after.at(a) == before.at(a));
     CHECK(after.relative_e == before.relative_e);
+    // Nothing in the blocks that the firmware refuses: a plain Klipper (no
+    // display) answers M117 '// Unknown command:"M117"'; the others show it.
+    bool message = false;
+    for (std::size_t i = c.prefix; i < c.prefix + c.block; ++i) message = message || r.log[i].command.rfind("M117", 0) == 0;
+    CHECK(message == (std::string(f.name) != "klipper"));
   }
 }
 
@@ -131,6 +136,23 @@ TEST_CASE("gc-send on Klipper: '!!' errors and unknown commands are warnings, th
   REQUIRE(executed.size() == input.size());  // (the final M400 makes up for it)
   for (std::size_t i = 1; i < input.size(); ++i) REQUIRE(executed[i - 1].command == input[i].text);
   CHECK(executed.back().command == "M400");
+}
+
+TEST_CASE("gc-send on Klipper: a shutdown mid-print is reported as failed, not done, with the time it took", "[gc-send][flavour]") {
+  // Issue 41: after Klipper's shutdown the progress line said "done" and
+  // the summary "time 0.000 s, 0 lines/s".
+  const std::string& file = pieces_of(kFlavours[1].fixture);
+  auto r = gctest::run(quote(tool_path("gc-send")) + " --port virtual:" + printer(kFlavours[1]) +
+                       ",simulated-clock,halt-after=300 " + quote(file));
+  INFO(r.err);
+  CHECK(r.status == 1);
+  CHECK(r.err.find("the printer reported a fatal error: Klipper state: Shutdown") != std::string::npos);
+  CHECK(r.err.find("gc-send: failed ") != std::string::npos);
+  CHECK(r.err.find("gc-send: done ") == std::string::npos);
+  const std::size_t summary = r.err.find("summary: lines ");
+  REQUIRE(summary != std::string::npos);
+  CHECK(number_after(r.err.substr(summary), "summary: lines ") >= 300);
+  CHECK(number_after(r.err.substr(summary), ", time ") > 0);
 }
 
 TEST_CASE("gc-send on Prusa: its own pause (M601) and M600 wait for the user, no timeout however long",
