@@ -17,7 +17,10 @@
 #
 #   bench/litho-vs-cura.sh [BIN_DIR] [WORK_DIR] [-- GC-LITHO OPTIONS]
 #
-# BIN_DIR: the built tools (build/bin); WORK_DIR: scratch (a temp dir).
+# BIN_DIR: the built tools (build/bin); WORK_DIR: scratch (a temp dir). Cura's
+# slices are kept in WORK_DIR and reused while gc-litho's STL of the plate is
+# the same, so a second run in the same WORK_DIR slices nothing.
+# PLATES='detail-flat dark-cylinder' runs only those plates (default: all 8).
 # Needs: apt-get install -y cura-engine imagemagick; the Cura definitions in
 # ../shared/slicer-defs/cura (or SLICER_DEFS).
 set -euo pipefail
@@ -75,16 +78,27 @@ print("%.0f %.0f %.0f %.0f %.0f %.1f" % (walls, middle, travel, f["layer_change_
 
 printf '| plate | program | walls | middle / infill | travel | layer changes | acceleration | layers | gc-litho / this |\n'
 printf '|---|---|---|---|---|---|---|---|---|\n'
+# Cura's two slices of NAME.stl, unless those of the same STL are there.
+slice_both() {  # NAME
+  local sum
+  sum=$(sha256sum <"$1.stl")
+  if [ "$(cat "$1.stl.sliced" 2>/dev/null)" != "$sum" ]; then
+    cura "$1.stl" lines "$1-lines.gcode" &
+    cura "$1.stl" concentric "$1-concentric.gcode"
+    wait
+    echo "$sum" >"$1.stl.sliced"
+  fi
+}
+
 worst_lines=0 worst_concentric=0
 for picture in light dark detail portrait; do
   for shape in flat cylinder; do
     name=$picture-$shape
+    [ -n "${PLATES:-}" ] && [[ " $PLATES " != *" $name "* ]] && continue
     args=()
     [ "$shape" = cylinder ] && args=(--shape cylinder --height 60)
     "$bin/gc-litho" "$picture.png" "${args[@]}" "${extra[@]}" --stl "$name.stl" -o "$name.gcode" -q
-    cura "$name.stl" lines "$name-lines.gcode" &
-    cura "$name.stl" concentric "$name-concentric.gcode"
-    wait
+    slice_both "$name"
     read -r w m t l a litho < <(breakdown "$name.gcode")
     echo "| $name | gc-litho | $w s | $m s | $t s | $l s | $a s | $(printf '%.0f' "$litho") s | |"
     for pattern in lines concentric; do

@@ -15,6 +15,11 @@
 #       shown as it is.
 #   gc_rate BYTES_OR_LINES SECONDS [SCALE]
 #       Prints BYTES_OR_LINES / SECONDS / SCALE with one decimal.
+#   gc_bench_input NAME
+#       For a part that runs a filter on the large file and on its first half
+#       (memory must stay flat): sets in (GC_BENCH_FILE), in_bytes, in_lines,
+#       out (GC_BENCH_TMP/NAME.out) and half (GC_BENCH_TMP/NAME-half.gcode,
+#       written: the first half of the lines).
 
 gc_measure() {
   local out=$1
@@ -41,6 +46,16 @@ gc_measure() {
   GC_SECONDS=$(awk -v us="$best" 'BEGIN { printf "%.4f", us / 1e6 }')
   GC_CPU_SECONDS=$(awk -v us="$cpu" 'BEGIN { printf "%.2f", us / 1e6 }')
   GC_RSS_KB=$rss
+}
+
+# shellcheck disable=SC2034  # the variables are the caller's
+gc_bench_input() {
+  in=$GC_BENCH_FILE
+  out=$GC_BENCH_TMP/$1.out
+  half=$GC_BENCH_TMP/$1-half.gcode
+  in_bytes=$(stat -c %s "$in")
+  in_lines=$(wc -l <"$in")
+  head -n $((in_lines / 2)) "$in" >"$half"
 }
 
 gc_rate() {

@@ -12,11 +12,7 @@ set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 tool=$GC_BIN/gc-litho
 picture=$here/../../tests/fixtures/images/gradient.png
-in=$GC_BENCH_FILE
-out=$GC_BENCH_TMP/litho.out
-half=$GC_BENCH_TMP/litho-half.gcode
-in_bytes=$(stat -c %s "$in")
-head -n $(($(wc -l <"$in") / 2)) "$in" >"$half"
+gc_bench_input litho
 
 args=(--texture "$picture" --projection z --width 220 --center 110,110 -q)
 gc_measure "$out" "$tool" "${args[@]}" "$in"

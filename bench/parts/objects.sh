@@ -9,12 +9,7 @@ set -euo pipefail
 # shellcheck source=../measure.sh
 . "$GC_BENCH_LIB"
 tool=$GC_BIN/gc-objects
-in=$GC_BENCH_FILE
-out=$GC_BENCH_TMP/objects.out
-half=$GC_BENCH_TMP/objects-half.gcode
-in_bytes=$(stat -c %s "$in")
-in_lines=$(wc -l <"$in")
-head -n $((in_lines / 2)) "$in" >"$half"
+gc_bench_input objects
 
 for args in "--exclude pegs.stl_7 -q" "-q"; do
   # shellcheck disable=SC2086

@@ -10,11 +10,7 @@ set -euo pipefail
 # shellcheck source=../measure.sh
 . "$GC_BENCH_LIB"
 tool=$GC_BIN/gc-relayer
-in=$GC_BENCH_FILE
-out=$GC_BENCH_TMP/relayer.out
-half=$GC_BENCH_TMP/relayer-half.gcode
-in_lines=$(wc -l <"$in")
-head -n $((in_lines / 2)) "$in" >"$half"
+gc_bench_input relayer
 # The Z of the layer at half the file's layers (PrusaSlicer's ;Z: comments).
 z_at_half() {
   local n

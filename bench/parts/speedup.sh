@@ -11,12 +11,7 @@ set -euo pipefail
 # shellcheck source=../measure.sh
 . "$GC_BENCH_LIB"
 tool=$GC_BIN/gc-speedup
-in=$GC_BENCH_FILE
-out=$GC_BENCH_TMP/speedup.out
-half=$GC_BENCH_TMP/speedup-half.gcode
-in_bytes=$(stat -c %s "$in")
-in_lines=$(wc -l <"$in")
-head -n $((in_lines / 2)) "$in" >"$half"
+gc_bench_input speedup
 layers=$(grep -c '^;LAYER_CHANGE' "$in")
 region="$((layers / 4 + 1))-$((3 * layers / 4))"
 

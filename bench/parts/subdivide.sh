@@ -9,11 +9,7 @@ set -euo pipefail
 # shellcheck source=../measure.sh
 . "$GC_BENCH_LIB"
 tool=$GC_BIN/gc-subdivide
-in=$GC_BENCH_FILE
-out=$GC_BENCH_TMP/subdivide.out
-half=$GC_BENCH_TMP/subdivide-half.gcode
-in_bytes=$(stat -c %s "$in")
-head -n $(($(wc -l <"$in") / 2)) "$in" >"$half"
+gc_bench_input subdivide
 
 for args in "--max 0.2" "--latency 0.25"; do
   # shellcheck disable=SC2086

@@ -9,12 +9,7 @@ set -euo pipefail
 # shellcheck source=../measure.sh
 . "$GC_BENCH_LIB"
 tool=$GC_BIN/gc-swap-layer
-in=$GC_BENCH_FILE
-out=$GC_BENCH_TMP/swap-layer.out
-half=$GC_BENCH_TMP/swap-layer-half.gcode
-in_bytes=$(stat -c %s "$in")
-in_lines=$(wc -l <"$in")
-head -n $((in_lines / 2)) "$in" >"$half"
+gc_bench_input swap-layer
 layers=$(grep -c '^;LAYER_CHANGE' "$in")
 middle=$((layers / 2))
 

@@ -8,12 +8,7 @@ set -euo pipefail
 # shellcheck source=../measure.sh
 . "$GC_BENCH_LIB"
 tool=$GC_BIN/gc-layers
-in=$GC_BENCH_FILE
-out=$GC_BENCH_TMP/time.out
-half=$GC_BENCH_TMP/time-half.gcode
-in_bytes=$(stat -c %s "$in")
-in_lines=$(wc -l <"$in")
-head -n $((in_lines / 2)) "$in" >"$half"
+gc_bench_input time
 
 gc_measure "$out" "$tool" "$in"
 plain_mbs=$(gc_rate "$in_bytes" "$GC_SECONDS" 1e6)

@@ -33,7 +33,7 @@ void add_firmware_options(CLI::App& app, VirtualPrinterToolOptions& o) {
   app.add_option("--max-line", c.max_line,
                  "Command buffer, MAX_CMD_SIZE (default 96): a line keeps its first BYTES - 1 bytes")
       ->type_name("BYTES");
-  app.add_option("--planner", c.planner, "Planner blocks, BLOCK_BUFFER_SIZE (default 16)")->type_name("N");
+  app.add_option("--planner", c.planner, "Planner blocks, BLOCK_BUFFER_SIZE (default 16; like Marlin, they hold one move fewer)")->type_name("N");
   app.add_option("--time-scale", c.time_scale, "Run this many times faster than real time (default 1)")
       ->type_name("X");
   app.add_option("--speed-factor", c.speed_factor,

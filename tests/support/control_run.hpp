@@ -85,18 +85,23 @@ struct PauseRun {
 };
 
 // gc-send on the in-process printer with a control FIFO; `script` runs once
-// the FIFO is there, with $F the FIFO and $S the status file. `bed`: how
-// gc-send learns the bed ("": not at all, as for a file that does not say).
+// the FIFO is there, with $F the FIFO, $S the status file and $L the
+// printer's log, and three shell functions that wait for an event (never for
+// a time, which a busy machine stretches): `paused` (the status file says
+// so), `at_layer N` (it shows layer N) and `executed N` (the printer has run
+// N of the print's numbered commands). `bed`: how gc-send learns the bed
+// ("": not at all, as for a file that does not say).
 inline PauseRun send_with_control(const std::string& file, const std::string& printer, const std::string& args,
                            const std::string& script, const std::string& bed = "--bed 250x210") {
   std::string dir = temp_dir();
   std::string fifo = dir + "/control.fifo", status = dir + "/status.json", log = dir + "/executed.log";
-  std::string cmd = "F=" + quote(fifo) + "; S=" + quote(status) + "\n" + quote(tool_path("gc-send")) +
+  std::string cmd = "F=" + quote(fifo) + "; S=" + quote(status) + "; L=" + quote(log) + "\n" + quote(tool_path("gc-send")) +
                     " -v --port virtual:" + printer + ",log=" + log + " --control \"$F\" --status-file \"$S\" " + bed + " " + args +
                     " " + quote(file) +
                     " & p=$!\n" + wait_for_fifo(fifo) +
                     "paused() { " + wait_for_lines("\"$S\"", {.match = quote("\"state\": \"paused\"")}) + "}\n" +
                     "at_layer() { " + wait_for_lines("\"$S\"", {.match = "\"\\\"layer\\\": $1,\""}) + "}\n" +
+                    "executed() { " + wait_for_lines("\"$L\"", {.match = numbered_log_line(), .at_least = "$1"}) + "}\n" +
                     script + "\nwait $p";
   PauseRun r;
   r.result = run(cmd);

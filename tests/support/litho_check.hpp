@@ -48,7 +48,7 @@ struct Measured {
   double worst_gap = 0;           // mm
   double worst_surface = 0;       // mm
   double worst_rate_error = 0;    // relative, over unclamped fill pieces above the first layer
-  std::size_t rate_pieces = 0;
+  std::size_t rate_pieces = 0;    // readings of the rate: pieces, the shortest read together (litho_check.cpp)
   std::size_t layers = 0;
 };
 

@@ -123,15 +123,10 @@ int run(Options& o, gcode::Diagnostics& diag) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Options o;
-  gcode::cli::Tool tool(
-      "gc-layers",
+  return gcode::cli::run_filter(
+      argc, argv, "gc-layers",
       "gc-layers: show a G-code file layer by layer (lines, bytes, Z, filament, features), or cut it by layer.\n"
       "Layers come from slicer markers (Cura, PrusaSlicer, Slic3r, Orca, Simplify3D) or, in unmarked files,\n"
-      "from the Z of extrusions. The first printed layer is 1.");
-  gcode::cli::add_layers_options(tool, o);
-  return tool.run(argc, argv, [&] {
-    gcode::Diagnostics diag = tool.diagnostics(o.io);
-    return run(o, diag);
-  });
+      "from the Z of extrusions. The first printed layer is 1.",
+      gcode::cli::add_layers_options, run);
 }

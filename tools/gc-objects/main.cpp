@@ -104,9 +104,8 @@ int label(const Options& o, gcode::cli::Filter& run, gcode::Diagnostics& diag) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Options o;
-  gcode::cli::Tool tool(
-      "gc-objects",
+  return gcode::cli::run_filter(
+      argc, argv, "gc-objects",
       "gc-objects: list the objects of a plate (id, name, layers, box, filament, time), draw them, or leave\n"
       "some of them out of the G-code exactly: the other objects' lines byte for byte, the nozzle primed as\n"
       "in the input before each kept extrusion, the travel straight to the next kept object.\n"
@@ -114,13 +113,11 @@ int main(int argc, char** argv) {
       "Studio, OrcaSlicer, M486, Klipper's EXCLUDE_OBJECT), else from their footprints on the first layer.\n"
       "  gc-objects plate.gcode                       the table\n"
       "  gc-objects --exclude 3,pegs.stl_7 plate.gcode -o rest.gcode\n"
-      "  gc-objects --label klipper plate.gcode -o labelled.gcode");
-  gcode::cli::add_objects_options(tool, o);
-  return tool.run(argc, argv, [&] {
-    gcode::Diagnostics diag = tool.diagnostics(o.io);
-    gcode::cli::Filter run(o.io);
-    if (!o.exclude.empty()) return exclude(o, run, diag);
-    if (!o.label.empty()) return label(o, run, diag);
-    return list(o, run, diag);
-  });
+      "  gc-objects --label klipper plate.gcode -o labelled.gcode",
+      gcode::cli::add_objects_options, [](Options& o, gcode::Diagnostics& diag) {
+        gcode::cli::Filter run(o.io);
+        if (!o.exclude.empty()) return exclude(o, run, diag);
+        if (!o.label.empty()) return label(o, run, diag);
+        return list(o, run, diag);
+      });
 }

@@ -62,9 +62,8 @@ int resume(const Options& o, gcode::Diagnostics& diag) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Options o;
-  gcode::cli::Tool tool(
-      "gc-relayer",
+  return gcode::cli::run_filter(
+      argc, argv, "gc-relayer",
       "gc-relayer: continue a print with a re-sliced file, or resume a failed print from a height.\n"
       "  gc-relayer --at-z 12 dense.gcode < part.gcode > joined.gcode\n"
       "      part.gcode up to its last layer at or below Z 12, then dense.gcode from the first layer above what\n"
@@ -74,15 +73,12 @@ int main(int argc, char** argv) {
       "  gc-relayer --resume-from-z 12.3 part.gcode > resume.gcode\n"
       "      after a power cut: heat, lift, declare Z, home X and Y only, then part.gcode from the first\n"
       "      layer above Z 12.3. --list-candidates 12.3 part.gcode shows the layers nearest a measured height.\n"
-      "Every travel across a seam goes above everything printed so far.");
-  gcode::cli::add_relayer_options(tool, o);
-  return tool.run(argc, argv, [&] {
-    gcode::Diagnostics diag = tool.diagnostics(o.io);
-    if (o.candidates_z) {
-      fmt::print("{}", gcode::cli::layer_candidates_text(o));
-      return 0;
-    }
-    if (o.resume_z) return resume(o, diag);
-    return join(o, diag);
-  });
+      "Every travel across a seam goes above everything printed so far.",
+      gcode::cli::add_relayer_options, [](Options& o, gcode::Diagnostics& diag) {
+        if (o.candidates_z) {
+          fmt::print("{}", gcode::cli::layer_candidates_text(o));
+          return 0;
+        }
+        return o.resume_z ? resume(o, diag) : join(o, diag);
+      });
 }

@@ -1,5 +1,7 @@
 #include "gcode/litho/lithophane.hpp"
 
+#include "gcode/litho/pass_counts.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -173,6 +175,17 @@ void LithophanePlanner::add_cap(Point from, Point to, double rate, Path& path, L
   ++stats.pieces;
 }
 
+// A pass's strip as `parts` equal pieces (its depths are linear along it).
+void LithophanePlanner::add_fill_strip(const Strip& st, int parts, double rate, Path& path, LayerStats& stats) const {
+  for (int p = 0; p < parts; ++p) {
+    const double f0 = static_cast<double>(p) / parts, f1 = static_cast<double>(p + 1) / parts;
+    auto at = [&](double f, double v0, double v1) { return v0 + (v1 - v0) * f; };
+    add_strip({at(f0, st.s0, st.s1), at(f0, st.a0, st.a1), at(f0, st.b0, st.b1), at(f1, st.s0, st.s1),
+               at(f1, st.a0, st.a1), at(f1, st.b0, st.b1)},
+              rate, path, stats);
+  }
+}
+
 // Douglas-Peucker over the candidate sample points (every resolution step
 // and every pixel centre, in order; the first and last are kept): a point
 // stays where the chord of the thickness through the kept points around it
@@ -246,10 +259,10 @@ int LithophanePlanner::cuts_between(const Column& c0, const Column& c1, double l
   if (c0.gap == 0 && c1.gap == 0) {
     worst = std::abs(2 * dwall);  // the two walls meet
   } else {
-    const double g = std::min(c0.gap, c1.gap);
-    const int passes = std::max(1, static_cast<int>(std::ceil(g / options_.max_pass_width - 1e-9)));
-    const double dpass = (c1.gap - c0.gap) / passes;
-    worst = std::max(std::abs(dwall + dpass), passes > 1 ? std::abs(2 * dpass) : 0.0);
+    // The top pass may take the whole change of the gap (FillGrid), and two
+    // passes below it at most that together.
+    const double dpass = c1.gap - c0.gap;
+    worst = std::max(std::abs(dwall + dpass), std::abs(dpass));
   }
   const double needed = std::ceil(worst / (4 * options_.edge_gap) - 1e-9);
   const double most = std::max(1.0, std::ceil(length / options_.min_piece - 1e-9));  // pieces of at least half a min piece
@@ -459,13 +472,24 @@ void LithophanePlanner::plan_wall_loop(const std::vector<double>& s, const std::
 
 // Where the passes lie: vertex i (sample point i; on a cylinder it may go
 // past the seam: index modulo m, s unwrapped) and the depths of pass j of
-// `count` side by side there.
+// `count` side by side there. Only the top pass (beside the outer wall) has
+// to follow the picture. The passes below it share one width along their
+// run, bent only where the top pass would leave [min pass width, max pass
+// width], and then as little as possible (the taut string through what the
+// top pass allows): they run straight where the picture changes every
+// pixel instead of turning, and the head with them, at every change.
 struct LithophanePlanner::FillGrid {
   const std::vector<double>& s;
   const std::vector<Column>& cols;
   int m;        // pieces
   bool cyclic;  // a cylinder
   double length;
+  double min_width;
+  double max_width;
+  double edge_gap;
+  int first = 0;              // the run being planned: its first vertex
+  std::vector<double> lower;  // and the width of each pass below the top one, per vertex from `first`
+  std::vector<int> splits;    // and into how many equal pieces each of its pieces is cut
 
   double s_of(int i) const {
     return cyclic ? s[static_cast<std::size_t>(i % m)] + (i / m) * length : s[static_cast<std::size_t>(i)];
@@ -473,29 +497,82 @@ struct LithophanePlanner::FillGrid {
   const Column& col_of(int i) const { return cols[static_cast<std::size_t>(cyclic ? i % m : i)]; }
   void depth(int i, int j, int count, double& a, double& b) const {
     const Column& c = col_of(i);
-    a = c.wall + c.gap * j / count;
-    b = c.wall + c.gap * (j + 1) / count;
+    const double w = count > 1 ? lower[static_cast<std::size_t>(i - first)] : c.gap;
+    a = c.wall + w * j;
+    b = j + 1 < count ? c.wall + w * (j + 1) : c.wall + c.gap;
+  }
+  // The widths below the top pass over the run of vertices k..end with `count` passes.
+  void plan_run(int k, int end, int count) {
+    first = k;
+    lower.clear();
+    splits.clear();
+    if (count < 2) return;
+    const std::size_t n = static_cast<std::size_t>(end - k + 1);
+    std::vector<double> x(n), lo(n), hi(n);
+    double mean = 0;
+    for (std::size_t v = 0; v < n; ++v) {
+      const int i = k + static_cast<int>(v);
+      const double gap = col_of(i).gap;
+      x[v] = s_of(i);
+      lo[v] = std::max(min_width, (gap - max_width) / (count - 1));
+      hi[v] = std::min(max_width, (gap - min_width) / (count - 1));
+      if (!(lo[v] <= hi[v])) lo[v] = hi[v] = gap / count;  // a pass begins or ends here: equal shares
+      mean += gap / count / static_cast<double>(n);
+    }
+    const double floor = *std::max_element(lo.begin(), lo.end());
+    const double ceiling = *std::min_element(hi.begin(), hi.end());
+    if (floor <= ceiling)  // one width fits the whole run: straight from end to end
+      lower.assign(n, std::clamp(mean, floor, ceiling));
+    else
+      lower = taut_string(x, lo, hi, std::clamp(mean, lo.front(), hi.front()), std::clamp(mean, lo.back(), hi.back()));
+    plan_splits(k, count);
+  }
+  // Where the passes below the top one bend, the passes change width along
+  // pieces the sampling cut for equal shares: such a piece is cut further
+  // until neighbouring beads (walls included) again leave at most the edge
+  // gap, |change of one + change of the other| / 4 (docs/lithophanes.md).
+  void plan_splits(int k, int count) {
+    splits.assign(lower.size() > 0 ? lower.size() - 1 : 0, 1);
+    for (std::size_t v = 0; v < splits.size(); ++v) {
+      const Column& c0 = col_of(k + static_cast<int>(v));
+      const Column& c1 = col_of(k + static_cast<int>(v) + 1);
+      const double dwall = c1.wall - c0.wall;
+      const double dlow = lower[v + 1] - lower[v];
+      const double dtop = (c1.gap - c0.gap) - (count - 1) * dlow;
+      double worst = std::max(std::abs(dwall + dlow), std::abs(dtop + dwall));
+      worst = std::max(worst, std::abs(dlow + (count > 2 ? dlow : dtop)));
+      worst = std::max(worst, std::abs(dlow + dtop));
+      splits[v] = std::max(1, static_cast<int>(std::ceil(worst / (4 * edge_gap) - 1e-9)));
+    }
+  }
+  int split_of(int i0, int i1) const {
+    const int v = std::min(i0, i1) - first;
+    return v >= 0 && static_cast<std::size_t>(v) < splits.size() ? splits[static_cast<std::size_t>(v)] : 1;
   }
 };
 
-// The passes between the walls. Piece k (from s[k] to s[k+1]) carries the
-// fewest equal passes that keep each at most max pass width at both its ends;
+// The passes between the walls. Piece k (from s[k] to s[k+1]) carries equal
+// passes, each within [min pass width, max pass width] at both its ends, as
+// many as keep the count steady along the layer (pass_counts.hpp);
 // consecutive pieces with the same count form a group printed as that many
 // runs side by side. Where the count changes, the runs end and new ones begin.
 void LithophanePlanner::plan_fill(const std::vector<double>& s, const std::vector<Column>& cols, double rate,
                                   LithoLayer& out) const {
   const int m = static_cast<int>(s.size()) - 1;  // pieces
   const bool cyclic = map_.closed();
-  std::vector<int> passes(static_cast<std::size_t>(m));
+  std::vector<PassRange> ranges(static_cast<std::size_t>(m));
+  std::vector<double> lengths(static_cast<std::size_t>(m));
   for (int k = 0; k < m; ++k) {
-    const double g = std::max(cols[k].gap, cols[k + 1].gap);
-    passes[k] = g > 0 ? std::max(1, static_cast<int>(std::ceil(g / options_.max_pass_width - 1e-9))) : 0;
-    out.stats.max_passes = std::max(out.stats.max_passes, passes[k]);
+    ranges[k] = pass_range(cols[k].gap, cols[k + 1].gap, options_.min_pass_width, options_.max_pass_width);
+    lengths[k] = s[k + 1] - s[k];
   }
-  const FillGrid grid{s, cols, m, cyclic, map_.length()};
+  const std::vector<int> passes = steady_pass_counts(ranges, lengths);
+  for (int p : passes) out.stats.max_passes = std::max(out.stats.max_passes, p);
+  FillGrid grid{s, cols, m, cyclic, map_.length(), options_.min_pass_width, options_.max_pass_width, options_.edge_gap, 0, {}, {}};
   Point cur = out.paths.empty() ? Point{} : end_of(out.paths.back());
   const bool ring = cyclic && std::all_of(passes.begin(), passes.end(), [&](int p) { return p == passes[0]; });
   if (ring) {
+    grid.plan_run(0, m, passes[0]);
     plan_fill_rings(grid, passes[0], rate, out);
     return;
   }
@@ -507,7 +584,10 @@ void LithophanePlanner::plan_fill(const std::vector<double>& s, const std::vecto
     const int count = passes[static_cast<std::size_t>(k % m)];
     int end = k;
     while (end < start + m && passes[static_cast<std::size_t>(end % m)] == count) ++end;
-    if (count > 0) cur = plan_fill_group(grid, k, end, count, cur, rate, out);
+    if (count > 0) {
+      grid.plan_run(k, end, count);
+      cur = plan_fill_group(grid, k, end, count, cur, rate, out);
+    }
     k = end;
   }
 }
@@ -523,7 +603,7 @@ void LithophanePlanner::plan_fill_rings(const FillGrid& grid, int count, double 
     for (int k = 0; k < grid.m; ++k) {
       double a1 = 0, b1 = 0;
       grid.depth(k + 1, j, count, a1, b1);
-      add_strip({grid.s_of(k), a, b, grid.s_of(k + 1), a1, b1}, rate, path, out.stats);
+      add_fill_strip({grid.s_of(k), a, b, grid.s_of(k + 1), a1, b1}, grid.split_of(k, k + 1), rate, path, out.stats);
       a = a1;
       b = b1;
     }
@@ -562,7 +642,8 @@ Point LithophanePlanner::plan_fill_group(const FillGrid& grid, int k, int end, i
     for (; fwd ? i < end : i > k; i += step) {
       double a1 = 0, b1 = 0;
       grid.depth(i + step, j, count, a1, b1);
-      add_strip({grid.s_of(i), a, b, grid.s_of(i + step), a1, b1}, rate, path, out.stats);
+      add_fill_strip({grid.s_of(i), a, b, grid.s_of(i + step), a1, b1}, grid.split_of(i, i + step), rate, path,
+                     out.stats);
       a = a1;
       b = b1;
     }

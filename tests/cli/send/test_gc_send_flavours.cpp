@@ -85,6 +85,11 @@ TEST_CASE("gc-send flavours: a FIFO pause and resume on each firmware, every com
     gcode::MachineState after = gctest::state_after(r.log, c.prefix + c.block);
     for (int a : {gcode::kX, gcode::kY, gcode::kZ, gcode::kE}) CHECK(after.at(a) == before.at(a));
     CHECK(after.relative_e == before.relative_e);
+    // Nothing in the blocks that the firmware refuses: a plain Klipper (no
+    // display) answers M117 '// Unknown command:"M117"'; the others show it.
+    bool message = false;
+    for (std::size_t i = c.prefix; i < c.prefix + c.block; ++i) message = message || r.log[i].command.rfind("M117", 0) == 0;
+    CHECK(message == (std::string(f.name) != "klipper"));
   }
 }
 
@@ -133,6 +138,23 @@ TEST_CASE("gc-send on Klipper: '!!' errors and unknown commands are warnings, th
   CHECK(executed.back().command == "M400");
 }
 
+TEST_CASE("gc-send on Klipper: a shutdown mid-print is reported as failed, not done, with the time it took", "[gc-send][flavour]") {
+  // Issue 41: after Klipper's shutdown the progress line said "done" and
+  // the summary "time 0.000 s, 0 lines/s".
+  const std::string& file = pieces_of(kFlavours[1].fixture);
+  auto r = gctest::run(quote(tool_path("gc-send")) + " --port virtual:" + printer(kFlavours[1]) +
+                       ",simulated-clock,halt-after=300 " + quote(file));
+  INFO(r.err);
+  CHECK(r.status == 1);
+  CHECK(r.err.find("the printer reported a fatal error: Klipper state: Shutdown") != std::string::npos);
+  CHECK(r.err.find("gc-send: failed ") != std::string::npos);
+  CHECK(r.err.find("gc-send: done ") == std::string::npos);
+  const std::size_t summary = r.err.find("summary: lines ");
+  REQUIRE(summary != std::string::npos);
+  CHECK(number_after(r.err.substr(summary), "summary: lines ") >= 300);
+  CHECK(number_after(r.err.substr(summary), ", time ") > 0);
+}
+
 TEST_CASE("gc-send on Prusa: its own pause (M601) and M600 wait for the user, no timeout however long",
           "[gc-send][flavour]") {
   std::string dir = gctest::temp_dir();
@@ -172,4 +194,32 @@ TEST_CASE("gc-send through gc-virtual-printer --firmware klipper on a pty: exact
   // model would only slow it to the file's feed rates (78 s here, not 1).
   CHECK(r.result.err.find("pacing off") != std::string::npos);
   gctest::require_exact(r, gctest::commands_of(gctest::read_file(file)));
+}
+
+TEST_CASE("gc-send on OctoPrint's virtual printer with gc-send's defaults: 3000 moves in 10 s, nothing lost", "[gc-send][flavour]") {
+  // Issue 41: its 64-byte receive buffer (a write waits for room, for up
+  // to 10 s) and its scripted refusals of lines 100 to 115, with no
+  // --rx-buffer: 2983 lines in 4.47 s on the simulated clock, no stall.
+  std::string dir = gctest::temp_dir();
+  std::string file = dir + "/moves.gcode", log = dir + "/executed.log";
+  REQUIRE(gctest::run(quote(tool_path("gc-subdivide")) + " --max 0.2 " +
+                      quote(gctest::fixture_path("prusa_cube_0.2_mk3s_rel_zhop.gcode")) +
+                      " | awk 'BEGIN { print \"G28\"; print \"G90\"; print \"M83\" } /^;LAYER_CHANGE/ { on = 1 } "
+                      "on && k++ < 3000' > " + quote(file))
+              .status == 0);
+  auto r = gctest::run(quote(tool_path("gc-send")) + " --port virtual:octoprint,simulated-clock,log=" + log + " " +
+                       quote(file));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.err.find("timeouts 0") != std::string::npos);
+  CHECK(r.err.find("bytes lost to overruns 0") != std::string::npos);
+  const std::size_t summary = r.err.find("summary: lines ");
+  REQUIRE(summary != std::string::npos);
+  CHECK(number_after(r.err.substr(summary), ", time ") <= 10);
+  // Every command once and in order (gc-send's own lines left out).
+  auto input = gctest::commands_of(gctest::read_file(file));
+  auto executed = gctest::read_log(log, &input);
+  REQUIRE(executed.size() == input.size() + 1);
+  for (std::size_t i = 0; i < input.size(); ++i) REQUIRE(executed[i].command == input[i].text);
+  CHECK(executed.back().command == "M400");
 }

@@ -265,12 +265,22 @@ TEST_CASE("gc-send --resume after kill -9: the objects cancelled and excluded st
   const std::string port = dir + "/printer", journal = dir + "/print.journal", fifo = dir + "/control.fifo";
   const std::string first = dir + "/first.err";
   const std::string send = quote(tool_path("gc-send")) + " -v --port " + quote(port) + " --journal " + quote(journal);
+  // The cancel goes once the printer has run what comes before input line
+  // 450 (inside object 2 in layer 1: lines 390 to 501, so gc-send has seen
+  // it), the kill once it has run 300 commands more: counts, not times.
+  std::size_t inside_2 = 0;
+  for (const gctest::SentCommand& c : gctest::commands_of(gctest::read_file(pegs()))) inside_2 += c.source_line < 450 ? 1 : 0;
+  const std::string log = quote(dir + "/executed.log");
+  auto printer_ran = [&](const std::string& count) {
+    return gctest::wait_for_lines(log, {.match = gctest::numbered_log_line(), .at_least = count, .while_alive = "$gs"});
+  };
   const std::string script =
       quote(tool_path("gc-virtual-printer")) + " -q --time-scale 8 --instant-moves --heat-rate 1000 --link " +
       quote(port) + " --log " + quote(dir + "/executed.log") + " & vp=$!\n" + gctest::wait_for_link(port) + send +
       " --no-pace --exclude 6 --control " + quote(fifo) + " " + quote(pegs()) + " 2> " + quote(first) + " & gs=$!\n" +
-      gctest::wait_for_journal_start(journal) + gctest::wait_for_fifo(fifo) + "sleep 0.5; echo 'cancel object 2' > " +
-      quote(fifo) + "; sleep 0.7; kill -9 $gs; wait $gs 2>/dev/null\n" + send + " --no-control --resume " +
+      gctest::wait_for_fifo(fifo) + printer_ran(std::to_string(inside_2)) + "echo 'cancel object 2' > " + quote(fifo) +
+      "\nn=$(" + gctest::numbered_log_count(dir + "/executed.log") + ")\n" + printer_ran("$((n + 300))") +
+      "kill -9 $gs; wait $gs 2>/dev/null\n" + send + " --no-control --resume " +
       quote(journal) + " " + quote(pegs()) + "; s=$?; kill $vp; wait $vp; exit $s";
   auto r = gctest::run(script);
   const std::string first_err = gctest::read_file(first);

@@ -44,13 +44,24 @@ std::string printer_up(const std::string& dir) {
 
 std::string gc_send(const std::string& args) { return quote(tool_path("gc-send")) + " " + args; }
 
-// gc-send started with `args` and killed with SIGKILL after `seconds`.
-std::string killed_after(const std::string& args, double seconds, const std::string& journal = "") {
-  // Counted from the journal's first acknowledgement when one is named: a
-  // loaded machine can take a second to start gc-send and open the printer.
-  const std::string started = journal.empty() ? "" : gctest::wait_for_journal_start(journal);
-  return gc_send(args) + " 2>/dev/null & gs=$!\n" + started + "sleep " + std::to_string(seconds) +
-         "\nkill -9 $gs; wait $gs 2>/dev/null\n";
+// `command` (gc-send, or a pipeline that ends in it) started and gc-send
+// killed with SIGKILL once the printer on `dir`/printer has run `commands`
+// more numbered commands (a count, not a time: a loaded machine runs
+// everything later, gc-send's start too).
+std::string killed_after(const std::string& command, const std::string& dir, int commands) {
+  return "n0=$(" + gctest::numbered_log_count(dir + "/executed.log") + ")\n" + command + " 2>/dev/null & gs=$!\n" +
+         gctest::wait_for_lines(quote(dir + "/executed.log"), {.match = gctest::numbered_log_line(),
+                                                               .at_least = "$((n0 + " + std::to_string(commands) + "))",
+                                                               .while_alive = "$gs", .tries = 6000}) +
+         "kill -9 $gs; wait $gs 2>/dev/null\n";
+}
+
+// A shell snippet that waits until the printer on `dir`/printer has run
+// what it took: its log still for 1.5 s (once, a fixed sleep of 2 s was too
+// short on a loaded machine: the count grew after it, with nothing sent).
+std::string printer_still(const std::string& dir) {
+  return "p=-1; for i in $(seq 100); do c=$(wc -l < " + quote(dir + "/executed.log") +
+         "); [ \"$c\" = \"$p\" ] && break; p=$c; sleep 1.5; done\n";
 }
 
 // A shell command that counts the numbered lines the printer executed
@@ -78,7 +89,7 @@ TEST_CASE("gc-send --resume after kill -9: every command of the file once, in or
   std::string port = dir + "/printer";
   std::string journal = dir + "/print.journal";
   std::string script = printer_up(dir) +
-                       killed_after("-q --port " + quote(port) + " --journal " + quote(journal) + " " + quote(input), 2, journal) +
+                       killed_after(gc_send("-q --port " + quote(port) + " --journal " + quote(journal) + " " + quote(input)), dir, 1000) +
                        gc_send("--port " + quote(port) + " --resume " + quote(journal) + " " + quote(input)) +
                        "; s=$?; kill $vp; wait $vp; exit $s";
   auto r = run(script);
@@ -101,7 +112,7 @@ TEST_CASE("gc-send --resume of a print killed before its first command begins it
                        gc_send("-q --port " + quote(port) + " --journal " + quote(journal) + " " + quote(input)) +
                        " 2>/dev/null & gs=$!\n" +
                        gctest::wait_for_lines(quote(journal), {.match = "'^H '", .tries = 5000, .every = 0.002}) +
-                       "sleep 0.3; kill -9 $gs; wait $gs 2>/dev/null; kill -CONT $vp\n" +
+                       "kill -9 $gs; wait $gs 2>/dev/null; kill -CONT $vp\n" +
                        "grep -c '^[SD] ' " + quote(journal) + " >&2\n" +
                        gc_send("--port " + quote(port) + " --resume " + quote(journal)) +
                        "; s=$?; kill $vp; wait $vp; exit $s";
@@ -121,8 +132,8 @@ TEST_CASE("gc-send --resume with the default journal and the journal's file, and
   std::string port = dir + "/printer";
   std::string env = "XDG_STATE_HOME=" + quote(dir + "/state") + " ";
   SECTION("a file: --resume alone finds the port's journal and the file it names") {
-    std::string script = printer_up(dir) + "cd /\n" + env +
-                         killed_after("-q --port " + quote(port) + " " + quote(input), 2) + env +
+    std::string script = printer_up(dir) + "cd /\n" +
+                         killed_after(env + gc_send("-q --port " + quote(port) + " " + quote(input)), dir, 1000) + env +
                          gc_send("--port " + quote(port) + " --resume") + "; s=$?; kill $vp; wait $vp; exit $s";
     auto r = run(script);
     INFO(r.err);
@@ -131,7 +142,7 @@ TEST_CASE("gc-send --resume with the default journal and the journal's file, and
   }
   SECTION("a pipeline: its bytes up to the resume hash as before") {
     std::string cat = "cat " + quote(input) + " | ";
-    std::string script = printer_up(dir) + cat + env + killed_after("-q --port " + quote(port), 2) + cat + env +
+    std::string script = printer_up(dir) + killed_after(cat + env + gc_send("-q --port " + quote(port)), dir, 1000) + cat + env +
                          gc_send("--port " + quote(port) + " --resume -") + "; s=$?; kill $vp; wait $vp; exit $s";
     auto r = run(script);
     INFO(r.err);
@@ -161,9 +172,8 @@ TEST_CASE("gc-send --resume refuses, exit 1, nothing sent: another file, a corru
            quote(dir + "/err-" + name) + "\n";
   };
   std::string script =
-      printer_up(dir) + killed_after("-q --port " + quote(port) + " --journal " + quote(journal) + " " + quote(input), 2, journal) +
-      "sleep 2\n"  // the printer has run everything it took
-      "n=$(" + numbered + ")\n"
+      printer_up(dir) + killed_after(gc_send("-q --port " + quote(port) + " --journal " + quote(journal) + " " + quote(input)), dir, 1000) +
+      printer_still(dir) + "n=$(" + numbered + ")\n"
       "sed '5s/ n=/ n=9/' " + quote(journal) + " > " + quote(dir + "/corrupt.journal") + "\n"
       "cp " + quote(journal) + " " + quote(open_dir + "/open.journal") + "\n" +
       resume("other", quote(journal) + " " + quote(other)) +
@@ -173,7 +183,8 @@ TEST_CASE("gc-send --resume refuses, exit 1, nothing sent: another file, a corru
       resume("open", quote(open_dir + "/open.journal") + " " + quote(input)) +
       "[ $(" + numbered + ") = $n ] || echo sent-something\n"
       // Someone moved the printer meanwhile (an unnumbered line on its pty).
-      "printf 'G91\\nG1 Z0.5 F600\\nG90\\n' > " + quote(port) + "\nsleep 0.5\n"
+      "printf 'G91\\nG1 Z0.5 F600\\nG90\\n' > " + quote(port) + "\n" +
+      gctest::wait_for_lines(quote(dir + "/executed.log"), {.match = "'	G90$'", .after = "'	G1 Z0.5 F600$'"}) +
       "n=$(" + numbered + ")\n" +
       resume("moved", quote(journal) + " " + quote(input)) +
       "[ $(" + numbered + ") = $n ] || echo sent-something\n"
@@ -213,14 +224,14 @@ TEST_CASE("gc-send killed with SIGKILL at random moments, resumed each time: the
               "\n" + gctest::wait_for_link(port))
               .status == 0);
   std::mt19937 rng(22);  // seeded: the same moments on every run
-  std::uniform_real_distribution<double> moment(0.5, 1.2);
+  std::uniform_int_distribution<int> moment(20, 1500);  // commands the printer runs before the kill
   std::string first = "-q --port " + link + " --journal " + quote(journal) + " " + quote(input);
   std::string again = "-q --port " + link + " --resume " + quote(journal) + " " + quote(input);
   bool finished = false;
   for (int kill = 0; kill < 4 && !finished; ++kill) {
-    double at = moment(rng);
-    INFO("kill " << kill << " after " << at << " s");
-    run(killed_after(kill == 0 ? first : again, at, kill == 0 ? journal : ""));
+    int at = moment(rng);
+    INFO("kill " << kill << " after " << at << " commands");
+    run(killed_after(gc_send(kill == 0 ? first : again), dir, at));
     gcode::serial::JournalContents c;
     REQUIRE_NOTHROW(c = gcode::serial::read_journal(journal));
     REQUIRE_FALSE(c.entries.empty());
@@ -255,9 +266,8 @@ TEST_CASE("gc-send --resume after a kill -9 inside gc-send's closing M400: the p
       printer_up(dir) + gc_send("-q --port " + quote(port) + " --journal " + quote(journal) + " " + quote(input)) +
       " 2>/dev/null & gs=$!\n" + gctest::wait_for_lines(quote(journal), {.match = "' own=1 '", .tries = 3000, .every = 0.005}) +
       "kill -9 $gs; wait $gs 2>/dev/null\n"
-      "grep -q '^F ' " + quote(journal) + " && echo finished-before-the-kill\n"
-      "sleep 1\n"  // the printer runs its queue down
-      "n=$(" + numbered + ")\n" +
+      "grep -q '^F ' " + quote(journal) + " && echo finished-before-the-kill\n" +
+      printer_still(dir) + "n=$(" + numbered + ")\n" +
       gc_send("--port " + quote(port) + " --resume " + quote(journal) + " " + quote(input)) + "; s=$?\n"
       "[ $(" + numbered + ") = $n ] || echo sent-something\n" +
       gc_send("-q --port " + quote(port) + " --resume " + quote(journal) + " " + quote(input)) +
@@ -349,18 +359,15 @@ TEST_CASE("gc-send --resume after a kill -9 while a cancel's end went out: never
         // lands inside it however late a loaded machine runs the script.
         printer_up(dir) + gc_send("-q --lift 10 --z-speed 0.5 --port " + quote(port) + " --journal " + quote(journal) +
                                   " --control " + quote(fifo) + " " + quote(input)) +
-        " 2>/dev/null & gs=$!\n" + gctest::wait_for_lines(quote(journal), {.match = "' layer=1 '"}) +
-        "sleep 0.3\n"  // inside layer 1
+        " 2>/dev/null & gs=$!\n" +
+        // Inside layer 1: 100 of its commands done.
+        gctest::wait_for_lines(quote(journal), {.match = "'^D '", .after = "' layer=1 '", .at_least = "100"}) +
         "echo cancel > " + quote(fifo) + "\n" +
         gctest::wait_for_lines(quote(journal), {.match = "' state=cancelling '", .tries = 2000, .every = 0.002}) +
         "kill -9 $gs; wait $gs 2>/dev/null\n"
         "grep -q '^F ' " + quote(journal) + " && echo finished-before-the-kill\n" +
         (reset ? "kill -USR1 $vp\n" : "") +
-        // Until the printer has run what it took, its log still for 1.5 s
-        // (a fixed sleep of 2 s was too short on a loaded machine: the count
-        // below grew after it, with nothing sent).
-        "p=-1; for i in $(seq 100); do c=$(wc -l < " + quote(dir + "/executed.log") +
-        "); [ \"$c\" = \"$p\" ] && break; p=$c; sleep 1.5; done\ncp " + quote(journal) + " " + quote(dir + "/before.journal") +
+        printer_still(dir) + "cp " + quote(journal) + " " + quote(dir + "/before.journal") +
         "\nn=$(" + numbered + ")\n" +
         gc_send("--port " + quote(port) + " --resume " + quote(journal) + " " + quote(input)) + "; s=$?\n"
         "[ $(" + numbered + ") = $n ] || echo sent-something\n"

@@ -70,7 +70,7 @@ Measured prove(const char* name, const HeightMap& map, double gap_step) {
   CHECK(m.worst_volume_error < 0.03);
   CHECK(std::abs(m.total_volume / m.expected_volume - 1) < 0.001);  // the paper's: completely filled
   CHECK(m.rate_pieces > 1000);
-  CHECK(m.worst_rate_error < 0.015);  // the base bead (typed FILL) on a cylinder: see the report of issue 43
+  CHECK(m.worst_rate_error < 0.01);
   return m;
 }
 

@@ -16,6 +16,8 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "gcode/core/diagnostics.hpp"
@@ -101,6 +103,21 @@ class Tool {
   FilterOptions* filter_ = nullptr;
   unsigned parts_ = 0;
 };
+
+// A filter's whole main: a Tool named `name` with `description` as its
+// --help, the options `add_options` adds, then `body` with them and the
+// Diagnostics their -q/-v ask for, under Tool::run's conventions.
+template <class Options>
+int run_filter(int argc, char** argv, std::string name, std::string description, void (*add_options)(Tool&, Options&),
+               const std::type_identity_t<std::function<int(Options&, Diagnostics&)>>& body) {
+  Options options;
+  Tool tool(std::move(name), std::move(description));
+  add_options(tool, options);
+  return tool.run(argc, argv, [&] {
+    Diagnostics diag = tool.diagnostics(options.io);
+    return body(options, diag);
+  });
+}
 
 // Validators with one message style: "--retract: must be a number >= 0, not 'x'".
 const CLI::Validator& positive();

@@ -125,6 +125,7 @@ class LithophanePlanner {
   double clamp_speed(double speed, Piece& piece, LayerStats& stats) const;
   static void push_piece(Path& path, const Piece& piece);
   bool add_strip(const Strip& strip, double rate, Path& path, LayerStats& stats) const;
+  void add_fill_strip(const Strip& strip, int parts, double rate, Path& path, LayerStats& stats) const;
   void add_cap(Point from, Point to, double rate, Path& path, LayerStats& stats) const;
   static Strip wall_strip(double s0, const Column& c0, double s1, const Column& c1, bool outer);
   struct SampleRun;  // the sample points of a layer as they are laid down

@@ -72,13 +72,16 @@ bool Pacer::waited_for_block(double late, bool bounded, long long block) const {
 
 // The move just answered took the block of move `freed`: that one had ended
 // by `entered`, or ended then if the answer was late (it waited for it).
-bool Pacer::observe(long long freed, double entered, double late, bool bounded) {
+bool Pacer::observe(long long freed, double entered, double late, bool bounded, bool probe) {
   if (freed <= known_ || freed < oldest()) return false;
   if (waited_for_block(late, bounded, freed)) {
     // The answer came that late after the block ended, less the host's
-    // usual latency (a model later than the printer starves it).
+    // usual latency (a model later than the printer starves it). Not a
+    // probe's: how late probes come is partly their waits for blocks
+    // shorter than the model said, and the moves the model lets go alone
+    // between spaced probes (probe_spacing.hpp) would overfill by one.
     known_ = freed;
-    anchor_ = entered - jitter_;
+    anchor_ = entered - (probe ? 0 : jitter_);
     sight(freed, anchor_);
     return true;
   }
@@ -141,7 +144,7 @@ void Pacer::answered(const Answer& a, int planner_blocks, double time_scale) {
     sight(answered_ - holds, entered);
   } else {
     const bool bounded = clean_ && known && t.apart;
-    observe(answered_ - n, entered, t.late, bounded);
+    observe(answered_ - n, entered, t.late, bounded, false);
     // Late past the least time a move took to be answered: a move's line
     // takes the printer longer to read than a probe's, which may have set
     // the base.
@@ -150,7 +153,9 @@ void Pacer::answered(const Answer& a, int planner_blocks, double time_scale) {
   }
   if (a.number >= probe_move_) probe_move_ = -1;
   chain();
-  floor_ *= kFloorDecay;
+  // (Not while probes are spaced: the model holds, and the floor their
+  // answers refresh would sink below the printer's pace between them.)
+  if (spacing_.gap() == 0) floor_ *= kFloorDecay;
   learn_floor(freed, a.now);
   clean_ = true;
   last_now_ = a.now;
@@ -194,7 +199,7 @@ bool Pacer::probe_wanted(int planner_blocks) const {
   // Right behind the moves the last probe let go: its answer says whether
   // the planner still had room once they were in (probe_credit.hpp).
   return !advanced_ && !probes_unheard_ && credit_.due() && probe_move_ < 0 && !probe_credit_ &&
-         answered_ >= static_cast<long long>(blocks(planner_blocks));
+         answered_ >= static_cast<long long>(blocks(planner_blocks)) && spacing_.due(answered_);
 }
 
 bool Pacer::probe_ahead(int planner_blocks) const { return credit_.left() > 0 && probe_wanted(planner_blocks); }
@@ -203,7 +208,11 @@ bool Pacer::probe_ahead(int planner_blocks) const { return credit_.left() > 0 &&
 // answer came once the oldest of the last n of them had left the planner.
 void Pacer::probe_answered(double now, double arrival, int planner_blocks) {
   ++probes_;
-  const bool outpaced = outpaced_by_probes(now);
+  // (After moves the model let go alone, the time since the last probe
+  // is theirs at its pace, no measure of the link: the next probe, right
+  // behind this one's move, says.)
+  const bool spaced_out = spacing_.gap() > 0;
+  const bool outpaced = outpaced_by_probes(now) && !spaced_out;
   // A move let go on an earlier one's word waited for a block: this one's
   // answer at once says nothing of room.
   if (probes_unheard_) return;
@@ -214,7 +223,7 @@ void Pacer::probe_answered(double now, double arrival, int planner_blocks) {
     return;
   }
   const Timing t = timing(now, arrival);
-  const bool waited = observe(freed, t.entered, t.late, t.apart);
+  const bool waited = observe(freed, t.entered, t.late, t.apart, true);
   if (waited) ++late_probes_;
   // More moves only on a probe that came within half a block at the
   // model's pace: one a block late is a planner that is full, whatever
@@ -225,6 +234,8 @@ void Pacer::probe_answered(double now, double arrival, int planner_blocks) {
   // slower moves (a layer's first ones after its fast infill).
   link_bound_ = !waited && quick && (link_bound_ || outpaced);
   const int c = credit_.answered(!waited, link_bound_, planner_blocks);
+  // Late by a part of a block: the planner was full, as the model said.
+  spacing_.answered(waited || t.late > kGrace * move(freed).seconds / rate_.factor(), answered_);
   // Room, and only the model's one block for it: the next probe waits for
   // that move's answer, so a printer that answers probes at once is found
   // out by its wait before another goes.
@@ -282,6 +293,7 @@ void Pacer::interrupted() {
   // The time up to the next sighting is not the moves' alone.
   clean_ = false;
   sighted_ = -1;
+  spacing_.reset();
 }
 
 }  // namespace gcode::serial

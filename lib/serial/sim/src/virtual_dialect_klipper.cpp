@@ -3,7 +3,10 @@
 // read and ignored, an unknown command answered '// Unknown command:"X"'
 // and ok, an error "!! ..." and ok, M115 answered on its ok line, and
 // after a shutdown every command refused (with its ok) until
-// FIRMWARE_RESTART.
+// FIRMWARE_RESTART. The printer modelled is one without [display],
+// [display_status], [respond] or a second extruder: klippy unmodified
+// then answers M73, M117, M118 and T0 '// Unknown command:"M117"' (seen on
+// klippy v0.13 with a simulated board).
 #include <array>
 #include <string_view>
 
@@ -19,12 +22,14 @@ namespace gcode::serial {
 namespace {
 
 // The standard commands of docs/G-Codes.md (with [gcode_arcs] and
-// [firmware_retraction] configured, as on most printers).
+// [firmware_retraction] configured, as on most printers). M73 and M117
+// come with a display, M118 with [respond], T<n> with a second extruder.
 constexpr CommandCode kKnown[] = {
-    {'G', 0},   {'G', 1},   {'G', 2},   {'G', 3},   {'G', 4},   {'G', 10},  {'G', 11},  {'G', 28},  {'G', 90},
-    {'G', 91},  {'G', 92},  {'M', 18},  {'M', 73},  {'M', 82},  {'M', 83},  {'M', 84},  {'M', 104}, {'M', 105},
-    {'M', 106}, {'M', 107}, {'M', 109}, {'M', 110}, {'M', 112}, {'M', 114}, {'M', 115}, {'M', 117}, {'M', 118},
-    {'M', 140}, {'M', 190}, {'M', 204}, {'M', 220}, {'M', 221}, {'M', 400},
+    {'G', 0},   {'G', 1},   {'G', 2},   {'G', 3},   {'G', 4},   {'G', 10},  {'G', 11},
+    {'G', 28},  {'G', 90},  {'G', 91},  {'G', 92},  {'M', 18},  {'M', 82},  {'M', 83},
+    {'M', 84},  {'M', 104}, {'M', 105}, {'M', 106}, {'M', 107}, {'M', 109}, {'M', 110},
+    {'M', 112}, {'M', 114}, {'M', 115}, {'M', 140}, {'M', 190}, {'M', 204}, {'M', 220},
+    {'M', 221}, {'M', 400},
 };
 
 // Extended commands every Klipper has.
@@ -62,7 +67,6 @@ class KlipperDialect final : public ReplyDialect {
         if (k == code) return true;
       return false;
     }
-    if (line.letter == 'T') return true;
     for (const CommandCode& c : kKnown)
       if (line.is(c.letter, c.number)) return true;
     return false;
@@ -74,14 +78,16 @@ class KlipperDialect final : public ReplyDialect {
     return fmt::format("!! Must home axis first: {:.3f} {:.3f} {:.3f} [{:.3f}]", x, y, z, e);
   }
   std::vector<std::string> refused_while_shut_down(std::string_view why) const override {
-    // The state message as respond_info lines, then its first line as the error.
-    return {fmt::format("// {}", why), "// Correct the cause, then FIRMWARE_RESTART resets the firmware,",
-            "// reloads the config and restarts the host software.", "// Printer is shutdown",
-            fmt::format("!! {}", why)};
+    // The state message as respond_info lines, then its first line as the
+    // error (klippy.py's message_shutdown, word for word).
+    return {fmt::format("// {}", why), "// Once the underlying issue is corrected, use the",
+            "// \"FIRMWARE_RESTART\" command to reset the firmware, reload the",
+            "// config, and restart the host software.", "// Printer is shutdown", fmt::format("!! {}", why)};
   }
 
   std::string temperatures(const Temperatures& t, bool) const override {
-    return fmt::format("T:{:.1f} /{:.1f} B:{:.1f} /{:.1f}", t.hotend, t.hotend_target, t.bed, t.bed_target);
+    // heaters.py: each sensor by its gcode id, sorted ("B" before "T0").
+    return fmt::format("B:{:.1f} /{:.1f} T0:{:.1f} /{:.1f}", t.bed, t.bed_target, t.hotend, t.hotend_target);
   }
   std::string position(double x, double y, double z, double e, long, long, long) const override {
     return fmt::format("X:{:.3f} Y:{:.3f} Z:{:.3f} E:{:.3f}", x, y, z, e);

@@ -385,7 +385,7 @@ void VirtualPrinter::send_ok(long long number) {
     return;
   }
   // The queue still holds the command being acknowledged, as in Marlin.
-  int planner_free = config_.planner - static_cast<int>(planner_.size());
+  int planner_free = planner_capacity() - static_cast<int>(planner_.size());
   int queue_free = config_.queue - static_cast<int>(queue_.size());
   send(dialect_->ok(number, config_.advanced_ok, planner_free, queue_free));
 }
@@ -482,8 +482,13 @@ bool VirtualPrinter::process_move(const Move& m, double t) {
 bool VirtualPrinter::planner_full(double t) const {
   double ahead = dialect_->behaviour().buffer_seconds;
   if (ahead > 0) return !planner_.empty() && stats_.last_move_end - t > ahead + 1e-9;
-  return planner_.size() >= static_cast<std::size_t>(config_.planner);
+  return planner_.size() >= static_cast<std::size_t>(planner_capacity());
 }
+
+// Marlin's planner is a ring buffer that keeps one block empty: a
+// BLOCK_BUFFER_SIZE of 16 holds 15 moves and answers "ok P15" when idle
+// (planner.h moves_free(); seen on Marlin 2.0.7.2's Linux HAL).
+int VirtualPrinter::planner_capacity() const { return std::max(1, config_.planner - 1); }
 
 // Waits for the planner to empty, then `after` for `duration`.
 bool VirtualPrinter::wait_for_planner(double t, After after, double duration) {
@@ -529,9 +534,10 @@ bool VirtualPrinter::process_M109(const Line& line, double t) {
   return false;
 }
 
-// M105: the temperatures on the ok line.
+// M105: the temperatures on the ok line; a Klipper shut down answers
+// "ok T:0" (gcode.py's cmd_default: its heaters are gone with the MCU).
 bool VirtualPrinter::process_M105() {
-  send(dialect_->temperature_ok(temperatures()));
+  send(flavour_.shut_down() ? std::string("ok T:0") : dialect_->temperature_ok(temperatures()));
   ok_sent_ = true;
   return true;
 }

@@ -423,8 +423,8 @@ TEST_CASE("pacer: behind a link, a printer at the file's pace or a little faster
   // only while fewer than two moves are unanswered (Pacer::kCreditInFlight):
   // a bet that lost holds no more than those beyond the planner, whatever
   // the command queue would take (4 places, or 8), and the link still runs
-  // full at 10 x. (gc-send's pause now at 2 x stays within 3.2 mm on the
-  // virtual printer.)
+  // full at 10 x. (gc-send's pause now at 2 x stays within the planner's
+  // 16 blocks and these 2 on the virtual printer.)
   for (int queue : {4, 8}) {
     for (double factor : {1.0, 1.25, 2.0, 10.0}) {
       INFO("printer at " << factor << " x, a queue of " << queue);

@@ -52,8 +52,25 @@ TEST_CASE("virtual printer: the ok comes when the command leaves the queue", "[s
   std::vector<std::string> later = answers(p, 3.1);
   REQUIRE(later.size() == 3);
   CHECK(later[0] == "echo:busy: processing");  // Marlin's keepalive, every 2 s
-  CHECK(later[1] == "ok P16 B3");               // G4 leaves the queue
-  CHECK(later[2] == "ok P15 B3");               // G1: now in the planner
+  CHECK(later[1] == "ok P15 B3");               // G4 leaves the queue (16 blocks hold 15 moves)
+  CHECK(later[2] == "ok P14 B3");               // G1: now in the planner
+}
+
+// Marlin 2.0.7.2 (Linux HAL, BLOCK_BUFFER_SIZE 16, ADVANCED_OK) answered
+// "ok P15 B3" idle: its ring buffer keeps one block empty.
+TEST_CASE("virtual printer: a planner of 16 blocks takes 15 moves, the 16th waits for a block to end", "[serial]") {
+  VirtualPrinterConfig c;
+  c.advanced_ok = true;
+  VirtualPrinter p(c);
+  answers(p, 1);
+  std::string moves;
+  for (int i = 1; i <= 16; ++i) moves += "G1 X" + std::to_string(10 * i) + " F600\n";  // 1 s each
+  p.receive(moves, 1);
+  std::vector<std::string> at_once = answers(p, 1.5);
+  REQUIRE(at_once.size() == 15);
+  CHECK(at_once.back().rfind("ok P0 ", 0) == 0);
+  CHECK(answers(p, 1.9).empty());      // the 16th waits for the first move
+  CHECK(answers(p, 2.1).size() == 1);  // ... and enters when it ends
 }
 
 TEST_CASE("virtual printer: bytes beyond the RX buffer are lost while a command blocks", "[serial]") {

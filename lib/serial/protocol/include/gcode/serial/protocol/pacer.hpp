@@ -51,13 +51,17 @@
 // for another reason (a delta: Marlin returns before the planner) would
 // seem always to have room: the one move let go on each probe's word waits
 // for a block; a few such waits (while no probe ever did) stop the probes,
-// and the speed learnt on their word is forgotten.
+// and the speed learnt on their word is forgotten. Probes that come late
+// as the model said space the next ones (probe_spacing.hpp): at the file's
+// pace a probe went with every held move; the model's own wake lets the
+// moves go between them, and the floor is not forgotten meanwhile.
 #include <algorithm>
 #include <array>
 #include <cstddef>
 
 #include "gcode/serial/protocol/pace_rate.hpp"
 #include "gcode/serial/protocol/probe_credit.hpp"
+#include "gcode/serial/protocol/probe_spacing.hpp"
 
 namespace gcode::serial {
 
@@ -134,7 +138,7 @@ class Pacer {
   bool waited_for_block(double late, bool bounded, long long block) const;
   bool outpaced_by_probes(double now);
   void heard_wait(double late, bool bounded, long long freed, bool probes_move);
-  bool observe(long long freed, double entered, double late, bool bounded);
+  bool observe(long long freed, double entered, double late, bool bounded, bool probe);
   // An answer's timing: when its command entered the planner, how late it
   // came past the host's own latency, and whether it came apart from the
   // answer before it.
@@ -174,6 +178,7 @@ class Pacer {
   bool probes_unheard_ = false; // moves waited for a block while no probe had: probes are answered at once
   int unheard_waits_ = 0;       // such waits so far
   ProbeCredit credit_;          // moves let go beyond the model on probes' word
+  ProbeSpacing spacing_;        // moves between probes that found the model right
   bool probe_credit_ = false;   // a probe found room: the next move released is its
   long long probe_move_ = -1;   // that move, until answered
   double wake_ = kNever;

@@ -54,7 +54,7 @@ struct SenderConfig {
   int max_resends = 10;      // requests for one line before giving up
   double link_bytes_per_second = 25000;  // baud / 10 (0: unknown, a pseudo-terminal)
   double time_scale = 1;     // a simulated printer's seconds per wall second
-  int planner_blocks = 16;   // Marlin BLOCK_BUFFER_SIZE (learnt from ADVANCED_OK's P)
+  int planner_blocks = 15;   // moves Marlin's planner holds: BLOCK_BUFFER_SIZE 16 less the empty one (learnt from ADVANCED_OK's P)
   std::size_t max_line = kDefaultMaxLine;  // Marlin MAX_CMD_SIZE
   bool max_line_from_firmware = true;      // an M115 report replaces max_line
   bool skip_bad_lines = false;             // leave out lines the firmware cannot take

@@ -172,6 +172,7 @@ class VirtualPrinter {
   bool process_M400(double t);
   bool wait_for_planner(double t, After after, double duration);
   bool planner_full(double t) const;
+  int planner_capacity() const;
   double idle_wait_at() const;
   // The firmware's own ways (virtual_printer_flavour.cpp).
   bool refused(const Line& line);
