@@ -208,11 +208,10 @@ bool Pacer::probe_ahead(int planner_blocks) const { return credit_.left() > 0 &&
 // answer came once the oldest of the last n of them had left the planner.
 void Pacer::probe_answered(double now, double arrival, int planner_blocks) {
   ++probes_;
-  // (After moves the model let go alone, the time since the last probe
-  // is theirs at its pace, no measure of the link: the next probe, right
-  // behind this one's move, says.)
-  const bool spaced_out = spacing_.gap() > 0;
-  const bool outpaced = outpaced_by_probes(now) && !spaced_out;
+  // (Also after moves the model let go alone between spaced probes: at ten
+  // times the file's pace the link is the limit, and a probe that finds the
+  // printer took them faster than the link brought them says so.)
+  const bool outpaced = outpaced_by_probes(now);
   // A move let go on an earlier one's word waited for a block: this one's
   // answer at once says nothing of room.
   if (probes_unheard_) return;
