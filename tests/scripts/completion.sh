@@ -49,19 +49,21 @@ for tool in "$@"; do
   declared=$(printf '%s\n' "$help" | sed -n 's/^  \(-[^ ]*\).*/\1/p' | tr ',' '\n' | sed 's/{.*//' | grep '^--' | sort -u)
   expect "$tool --<TAB>" "$declared" "$(complete_words "$tool" --)"
   expect "$tool --vers<TAB>" "--version" "$(complete_words "$tool" --vers)"
-  if printf '%s\n' "$declared" | grep -qx -- --e-mode; then
+  # (grep -c, not -q, in a pipeline: -q stops reading at the first match, the
+  # writer may then die of SIGPIPE, and pipefail fails the whole test.)
+  if printf '%s\n' "$declared" | grep -xc -- --e-mode >/dev/null; then
     expect "$tool --e-mode r<TAB>" "relative" "$(complete_words "$tool" --e-mode r)"
     expect "$tool --e-mode=<TAB>" "absolute
 auto
 relative" "$(complete_words "$tool" --e-mode = '')"
   fi
-  if printf '%s\n' "$declared" | grep -qx -- --output; then
+  if printf '%s\n' "$declared" | grep -xc -- --output >/dev/null; then
     expect "$tool -o DIR/pa<TAB>" "$dir/part.gcode" "$(complete_words "$tool" -o "$dir/pa")"
   fi
-  if printf '%s\n' "$declared" | grep -qx -- --layers; then
+  if printf '%s\n' "$declared" | grep -xc -- --layers >/dev/null; then
     expect "$tool --layers <TAB>" "" "$(complete_words "$tool" --layers '')"
   fi
-  if printf '%s\n' "$help" | grep -q "^Usage: $tool \[OPTIONS\] \[FILE\]"; then
+  if printf '%s\n' "$help" | grep -c "^Usage: $tool \[OPTIONS\] \[FILE\]" >/dev/null; then
     expect "$tool DIR/pa<TAB>" "$dir/part.gcode" "$(complete_words "$tool" "$dir/pa")"
     expect "$tool -q DIR/pa<TAB> (a flag takes no value)" "$dir/part.gcode" "$(complete_words "$tool" -q "$dir/pa")"
   fi

@@ -35,7 +35,9 @@ done
 for path in "$prefix"/bin/*; do
   check
   name=$(basename "$path")
-  printf '%s\n' "$@" | grep -qx -- "$name" || fail "bin/$name is installed but is no tool of the build"
+  # (grep -c, not -q, in a pipeline: -q stops reading at the first match, the
+  # writer may then die of SIGPIPE, and pipefail fails the whole test.)
+  printf '%s\n' "$@" | grep -xc -- "$name" >/dev/null || fail "bin/$name is installed but is no tool of the build"
 done
 
 # The installed completions complete the installed tools.

@@ -51,7 +51,9 @@ for tool in "$@"; do
     pkg=${owner_of[$lib]}
     [ -n "$pkg" ] || continue
     check
-    printf '%s\n' "$depends" | tr ',' '\n' | sed 's/^ *//; s/ .*//' | grep -qx -- "$pkg" ||
+    # (grep -c, not -q, in a pipeline: -q stops reading at the first match, the
+    # writer may then die of SIGPIPE, and pipefail fails the whole test.)
+    printf '%s\n' "$depends" | tr ',' '\n' | sed 's/^ *//; s/ .*//' | grep -xc -- "$pkg" >/dev/null ||
       fail "$tool loads $lib (package $pkg), which gcode-tools does not depend on"
   done
 done
@@ -68,7 +70,7 @@ for pattern in '/libgcode\.a$' '/libgcode_cli\.a$' '/cmake/gcode-tools/gcode-too
 done
 for dep in libfmt-dev libre2-dev libcli11-dev libstb-dev libxxhash-dev; do
   check
-  printf '%s\n' "$dev_depends" | grep -q -- "$dep" || fail "gcode-tools-dev does not depend on $dep"
+  printf '%s\n' "$dev_depends" | grep -c -- "$dep" >/dev/null || fail "gcode-tools-dev does not depend on $dep"
 done
 check
 if grep -q '^./usr/include/' "$work/tools.files"; then fail "headers in the tools package"; fi

@@ -99,7 +99,7 @@ TEST_CASE("gc-send flavours: a cancel on each firmware ends safely after the com
     INFO("firmware " << f.name << ", " << f.fixture);
     const std::string& file = pieces_of(f.fixture);
     auto input = gctest::commands_of(gctest::read_file(file));
-    PauseRun r = send_with_control(file, printer(f), "--no-pace", "at_layer 1; sleep 0.2; echo cancel > \"$F\"");
+    PauseRun r = send_with_control(file, printer(f), "--no-pace", "at_layer 1; executed 1500; echo cancel > \"$F\"");
     INFO(r.result.err);
     REQUIRE(r.result.status == 0);
     check_detected(f, r.result.err);
