@@ -240,12 +240,15 @@ long long Sender::make_room_for_own() {
 }
 
 // Whether every command waiting to go out still fits the firmware's line
-// once moved up one number (N99 becomes N100: one byte more). Where one
-// would not, gc-send asks nothing of its own until that command is out.
-bool Sender::room_for_own() const {
+// once moved up one number: N99 becomes N100, and the checksum changes too
+// (*9 may become *123), so the line is made anew and measured. Where one
+// would not fit, gc-send asks nothing of its own until that command is out.
+// (Only when an own line is due, over the few commands that wait.)
+bool Sender::room_for_own() {
   for (long long n = next_send_; n < next_number_; ++n) {
-    const std::size_t grows = std::to_string(n + 1).size() - std::to_string(n).size();
-    if (slot(n).wire.size() + grows > config_.max_line) return false;
+    moved_.clear();
+    append_numbered_line(moved_, n + 1, command_of_numbered(slot(n).wire));
+    if (moved_.size() > config_.max_line) return false;
   }
   return true;
 }

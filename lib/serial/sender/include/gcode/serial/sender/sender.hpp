@@ -293,7 +293,7 @@ class Sender : private TimeSink, private PrintHistory {
   void send_unnumbered(std::string_view command);
   // A line of the sender's own goes out now, numbered next: the commands
   // numbered but not sent yet move up one number.
-  bool room_for_own() const;
+  bool room_for_own();
   void send_own(InFlight::Own kind, double now);
   long long make_room_for_own();
   void push_flight(long long number, std::size_t bytes, bool temperature_query,
@@ -411,6 +411,7 @@ class Sender : private TimeSink, private PrintHistory {
   NumberedHook on_numbered_;
   AcknowledgedHook on_acknowledged_;
   std::string temperatures_;
+  std::string moved_;  // room_for_own: a waiting line made anew under its next number
   Pacer pacer_;
 };
 
