@@ -280,6 +280,7 @@ void LithophanePlanner::plan_layer(int index, LithoLayer& out) const {
   std::vector<double> s;
   std::vector<Column> cols;
   sample_layer(out.sample_z, s, cols);
+  if (!options_.base_wall) widen_base(s, cols);  // a wider base wall would be slower
   const double base_rate = options_.base_wall ? wall_rate_ : fill_rate_;
   if (map_.closed())
     plan_wall_rings(s, cols, wall_rate_ * factor, base_rate * factor, out);
@@ -414,9 +415,107 @@ void LithophanePlanner::sample_layer(double zs, std::vector<double>& s, std::vec
   run.finish();
 }
 
+// The base bead can take a share of the gap like a pass (up to max pass
+// width): the counts of passes are chosen as if it could, so where one pass
+// fewer would be a little too wide the count stays the same along the layer
+// instead of changing, each change a stop of every run beside it and a
+// travel (docs/lithophanes.md, Walls and passes).
+void LithophanePlanner::widen_base(std::vector<double>& s, std::vector<Column>& cols) const {
+  const int m = static_cast<int>(s.size()) - 1;
+  const double widest = options_.max_pass_width, slack = std::max(0.0, widest - options_.line_width);
+  if (m < 1 || !(slack > 0)) return;
+  std::vector<PassRange> ranges(static_cast<std::size_t>(m));
+  std::vector<double> lengths(static_cast<std::size_t>(m));
+  for (int k = 0; k < m; ++k) {
+    const double g0 = cols[k].gap, g1 = cols[k + 1].gap;
+    const PassRange fewer = pass_range(std::max(0.0, g0 - slack) * (g0 > 0), std::max(0.0, g1 - slack) * (g1 > 0),
+                                       options_.min_pass_width, widest);
+    const PassRange plain = pass_range(g0, g1, options_.min_pass_width, widest);
+    // A flat plate's end caps meet the base bead at its own width.
+    const bool end = !map_.closed() && (k == 0 || k == m - 1);
+    ranges[k] = {end ? plain.fewest : std::min(fewer.fewest, plain.fewest), plain.most};
+    lengths[k] = s[k + 1] - s[k];
+  }
+  const std::vector<int> passes = steady_pass_counts(ranges, lengths);
+  // How much wider the base bead must be (lo) and may be (hi) at each point
+  // for the counts chosen; it takes the taut string through that corridor,
+  // so it bends only where it must, like the passes below the top one.
+  const std::size_t n = cols.size();
+  std::vector<double> lo(n, 0.0), hi(n, slack), x(s.begin(), s.end());
+  for (int k = 0; k < m; ++k) {
+    const int c = passes[static_cast<std::size_t>(k)];
+    for (int i : {k, k + 1}) {
+      if (c < 1 || !(cols[i].gap > 0)) {
+        hi[i] = 0;
+        continue;
+      }
+      lo[i] = std::max(lo[i], cols[i].gap - c * widest);
+      hi[i] = std::min(hi[i], cols[i].gap - c * options_.min_pass_width);
+    }
+  }
+  if (!map_.closed()) hi.front() = hi.back() = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    hi[i] = std::max(0.0, hi[i]);
+    lo[i] = std::clamp(lo[i], 0.0, hi[i]);
+  }
+  const double end = map_.closed() ? std::max(lo.front(), lo.back()) : 0.0;
+  std::vector<double> extra = taut_string(x, lo, hi, end, end);
+  for (std::size_t i = 0; i < n; ++i) extra[i] = std::clamp(extra[i], lo[i], hi[i]);
+  apply_base_extra(extra, s, cols);
+}
+
+// Where the base bead widens along a piece, the beads on both sides of its
+// edge change width the more: the piece is cut further, so that neighbours
+// again leave at most the edge gap (cuts_between).
+void LithophanePlanner::apply_base_extra(const std::vector<double>& extra, std::vector<double>& s,
+                                         std::vector<Column>& cols) const {
+  const int m = static_cast<int>(s.size()) - 1;
+  std::vector<int> cuts(static_cast<std::size_t>(m), 1);
+  for (int k = 0; k < m; ++k) {
+    const double de = std::abs(extra[k + 1] - extra[k]);
+    if (!(de > 0)) continue;
+    const double worst = de + std::abs(cols[k + 1].gap - cols[k].gap) + std::abs(cols[k + 1].wall - cols[k].wall);
+    const double needed = std::ceil(worst / (4 * options_.edge_gap) - 1e-9);
+    // A piece too short to cut that often (a steep edge): the layer keeps its changes of count.
+    if (needed > std::max(1.0, std::floor((s[k + 1] - s[k]) / options_.min_piece))) return;
+    cuts[static_cast<std::size_t>(k)] = static_cast<int>(needed);
+  }
+  const double unit = map_.closed() ? 0.0 : 1e-4;
+  const double x0 = point_at(0, 0).x;
+  auto snap = [&](double v) { return unit > 0 ? std::round((x0 + v) * 1e4) / 1e4 - x0 : v; };
+  std::vector<double> s2;
+  std::vector<Column> cols2;
+  s2.reserve(s.size());
+  cols2.reserve(cols.size());
+  for (int k = 0; k <= m; ++k) {
+    Column c = cols[k];
+    c.extra = extra[k];
+    c.gap -= extra[k];
+    s2.push_back(s[k]);
+    cols2.push_back(c);
+    if (k == m) break;
+    const int parts = cuts[static_cast<std::size_t>(k)];
+    for (int j = 1; j < parts; ++j) {
+      const double at = snap(s[k] + (s[k + 1] - s[k]) * j / parts);
+      if (!(at > s2.back() && at < s[k + 1])) continue;
+      const double f = (at - s[k]) / (s[k + 1] - s[k]);
+      // The piece's boundaries are linear between its ends: so are the new points'.
+      auto lerp = [f](double a, double b) { return a + (b - a) * f; };
+      Column mid{lerp(cols[k].t, cols[k + 1].t), lerp(cols[k].wall, cols[k + 1].wall),
+                 lerp(cols[k].gap, cols[k + 1].gap), lerp(extra[k], extra[k + 1])};
+      mid.gap -= mid.extra;
+      s2.push_back(at);
+      cols2.push_back(mid);
+    }
+  }
+  s.swap(s2);
+  cols.swap(cols2);
+}
+
 LithophanePlanner::Strip LithophanePlanner::wall_strip(double s0, const Column& c0, double s1, const Column& c1,
                                                        bool outer) {
-  return outer ? Strip{s0, c0.t - c0.wall, c0.t, s1, c1.t - c1.wall, c1.t} : Strip{s0, 0, c0.wall, s1, 0, c1.wall};
+  return outer ? Strip{s0, c0.t - c0.wall, c0.t, s1, c1.t - c1.wall, c1.t}
+               : Strip{s0, 0, c0.wall + c0.extra, s1, 0, c1.wall + c1.extra};
 }
 
 PathRole LithophanePlanner::base_role() const { return options_.base_wall ? PathRole::WallInner : PathRole::Base; }
@@ -429,7 +528,7 @@ void LithophanePlanner::plan_wall_rings(const std::vector<double>& s, const std:
     Path path;
     path.role = outer ? PathRole::WallOuter : base_role();
     const double r = outer ? rate : base_rate;
-    const double mid0 = outer ? cols[0].t - cols[0].wall / 2 : cols[0].wall / 2;
+    const double mid0 = outer ? cols[0].t - cols[0].wall / 2 : (cols[0].wall + cols[0].extra) / 2;
     path.start = point_at(0, mid0);
     for (std::size_t k = 0; k + 1 < s.size(); ++k)
       add_strip(wall_strip(s[k], cols[k], s[k + 1], cols[k + 1], outer), r, path, out.stats);
@@ -498,8 +597,9 @@ struct LithophanePlanner::FillGrid {
   void depth(int i, int j, int count, double& a, double& b) const {
     const Column& c = col_of(i);
     const double w = count > 1 ? lower[static_cast<std::size_t>(i - first)] : c.gap;
-    a = c.wall + w * j;
-    b = j + 1 < count ? c.wall + w * (j + 1) : c.wall + c.gap;
+    const double base = c.wall + c.extra;
+    a = base + w * j;
+    b = j + 1 < count ? base + w * (j + 1) : base + c.gap;
   }
   // The widths below the top pass over the run of vertices k..end with `count` passes.
   void plan_run(int k, int end, int count) {
@@ -537,9 +637,10 @@ struct LithophanePlanner::FillGrid {
       const Column& c0 = col_of(k + static_cast<int>(v));
       const Column& c1 = col_of(k + static_cast<int>(v) + 1);
       const double dwall = c1.wall - c0.wall;
+      const double dbase = dwall + c1.extra - c0.extra;
       const double dlow = lower[v + 1] - lower[v];
       const double dtop = (c1.gap - c0.gap) - (count - 1) * dlow;
-      double worst = std::max(std::abs(dwall + dlow), std::abs(dtop + dwall));
+      double worst = std::max(std::abs(dbase + dlow), std::abs(dtop + dwall));
       worst = std::max(worst, std::abs(dlow + (count > 2 ? dlow : dtop)));
       worst = std::max(worst, std::abs(dlow + dtop));
       splits[v] = std::max(1, static_cast<int>(std::ceil(worst / (4 * edge_gap) - 1e-9)));

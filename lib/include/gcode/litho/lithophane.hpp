@@ -113,6 +113,7 @@ class LithophanePlanner {
     double t;     // thickness
     double wall;  // depth of each wall
     double gap;   // depth left for passes (0: none)
+    double extra = 0;  // the base bead's width beyond `wall` (widen_base)
   };
   struct Strip {  // one piece of a bead, from s0 to s1, depths [a, b] at each end
     double s0, a0, b0;
@@ -132,6 +133,8 @@ class LithophanePlanner {
   struct FillGrid;   // where the passes lie
   void sample_candidates(double first, double span, int n, std::vector<double>& cand) const;
   void sample_layer(double zs, std::vector<double>& s, std::vector<Column>& cols) const;
+  void widen_base(std::vector<double>& s, std::vector<Column>& cols) const;
+  void apply_base_extra(const std::vector<double>& extra, std::vector<double>& s, std::vector<Column>& cols) const;
   PathRole base_role() const;
   void plan_wall_rings(const std::vector<double>& s, const std::vector<Column>& cols, double rate, double base_rate,
                        LithoLayer& out) const;
