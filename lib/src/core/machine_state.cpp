@@ -1,6 +1,7 @@
 #include "gcode/core/machine_state.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "gcode/core/arc.hpp"
 
@@ -300,8 +301,13 @@ bool word_fixed(const Line& line, char letter, Fixed& out) {
   return true;
 }
 
+// (A value past int's range, "T66666...", is clamped: converting it as it
+// is would be undefined.)
 int word_int(const Line& line, char letter, int fallback) {
-  return static_cast<int>(line.value_or(letter, fallback));
+  const double v = line.value_or(letter, fallback);
+  if (!(v > std::numeric_limits<int>::min())) return std::numeric_limits<int>::min();
+  if (!(v < std::numeric_limits<int>::max())) return std::numeric_limits<int>::max();
+  return static_cast<int>(v);
 }
 
 // A heater's target: S, or R ("wait while heating or cooling").

@@ -1,5 +1,6 @@
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <catch2/catch.hpp>
 
@@ -203,4 +204,16 @@ TEST_CASE("a relative E move's filament is the exact difference's double, bit fo
     INFO(t);
     CHECK(std::memcmp(&m.filament, &exact, sizeof exact) == 0);
   }
+}
+
+TEST_CASE("read_heater_fan: a heater or fan index past int's range is clamped, not converted out of range",
+          "[machine_state]") {
+  // (fuzz_pipeline: "T6.7e64" was converted to int, undefined behaviour.)
+  gcode::HeaterFanLine out;
+  REQUIRE(gcode::read_heater_fan(gcode::Line::parse("M104 T66666666666666666666666666666666666666666666666666666666666666666 S200"), 0, out));
+  CHECK(out.index == std::numeric_limits<int>::max());
+  REQUIRE(gcode::read_heater_fan(gcode::Line::parse("M106 P-9999999999999999999999 S255"), 0, out));
+  CHECK(out.index == std::numeric_limits<int>::min());
+  REQUIRE(gcode::read_heater_fan(gcode::Line::parse("M104 T1 S200"), 0, out));
+  CHECK(out.index == 1);
 }
