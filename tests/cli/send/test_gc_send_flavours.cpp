@@ -104,6 +104,9 @@ TEST_CASE("gc-send flavours: a cancel on each firmware ends safely after the com
     REQUIRE(r.result.status == 0);
     check_detected(f, r.result.err);
     CHECK(r.result.err.find("cancelled after input line") != std::string::npos);
+    // The progress line ends the print as cancelled, never as done.
+    CHECK(r.result.err.find("gc-send: cancelled ") != std::string::npos);
+    CHECK(r.result.err.find("gc-send: done ") == std::string::npos);
     std::size_t prefix = 0;
     while (prefix < input.size() && prefix < r.log.size() && r.log[prefix].command == input[prefix].text) ++prefix;
     CHECK(prefix > 100);

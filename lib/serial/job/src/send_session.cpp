@@ -456,7 +456,8 @@ void SendSession::set_reconnect(const std::string& path, const PortOptions& opti
 std::string_view SendSession::state_label() const {
   if (sender_.state() == SenderState::Failed) return "failed";
   if (sender_.emergency()) return "stopped";
-  if (sender_.finished()) return "done";
+  // (A cancelled print ends with its safe end sent: "cancelled", not done.)
+  if (sender_.finished()) return control_->cancelled() ? "cancelled" : "done";
   if (reconnecting()) return "reconnecting";
   return control_->state_label();
 }
