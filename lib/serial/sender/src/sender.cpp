@@ -53,6 +53,7 @@ void Sender::continue_from(long long next, const MachineState& printer, const Re
                            std::uint64_t source_line, int layer) {
   next_number_ = next_send_ = next;
   highest_sent_ = journaled_ = next - 1;
+  resent_above_highest_ = 0;
   last_acked_.number = next - 1;
   machine_ = printer;
   handshake_.resume_running_printer();
@@ -159,6 +160,7 @@ std::size_t Sender::withdraw_unsent(std::size_t max, const MachineState& before,
   for (long long k = next_number_ - static_cast<long long>(n); k < next_number_; ++k)
     commands.emplace_back(command_of_numbered(slot(k).wire));
   next_number_ -= static_cast<long long>(n);
+  if (next_number_ <= highest_sent_ + 1) resent_above_highest_ = 0;  // (none of them waits now)
   // The estimator has seen them: their times are only estimates anyway.
   machine_ = before;
   took_back();
@@ -169,6 +171,7 @@ std::size_t Sender::discard_unsent() {
   if (final_queued_ || cancelled_) return 0;
   std::size_t n = pending();
   next_number_ = next_send_;
+  if (next_number_ <= highest_sent_ + 1) resent_above_highest_ = 0;
   took_back();
   return n;
 }
@@ -233,8 +236,11 @@ long long Sender::make_room_for_own() {
   if (last_enqueued_ >= k) ++last_enqueued_;
   ++next_number_;
   // Lines sent already and refused since (a rewind to k): they go out
-  // again under their new numbers, and are journaled again so.
-  if (highest_sent_ >= k) ++highest_sent_;
+  // again under their new numbers, and are journaled again so. The highest
+  // number on the wire stays what it is (a resend request past it names a
+  // line never sent), and the one of them that goes out above it is counted
+  // as sent again, not as a new line.
+  if (highest_sent_ >= k) ++resent_above_highest_;
   journaled_ = std::min(journaled_, k - 1);
   return prev;
 }
@@ -351,7 +357,11 @@ void Sender::fill(double now) {
     idle_hint_ = false;  // "wait" was about what went before
     const bool probe_ahead = pacing() && s.move && pacer_.probe_ahead(clock_.planner_blocks());
     journal_first_send(next_send_);
-    if (next_send_ > highest_sent_) {
+    if (next_send_ > highest_sent_ && resent_above_highest_ > 0) {
+      highest_sent_ = next_send_;
+      --resent_above_highest_;
+      ++stats_.resent_lines;
+    } else if (next_send_ > highest_sent_) {
       highest_sent_ = next_send_;
       ++stats_.lines;
       stats_.payload_bytes += s.wire.size();

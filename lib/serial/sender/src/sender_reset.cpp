@@ -105,6 +105,7 @@ bool Sender::resubmit_after_reset(long long back, const std::vector<std::string>
   // are free again: the handshake names the last number that went out, whose
   // journal record was written before it did.
   next_number_ = next_send_ = highest_sent_ + 1;
+  resent_above_highest_ = 0;  // every waiting line is numbered anew
   handshake_.number_on_from(highest_sent_);
   journaled_ = std::min(journaled_, highest_sent_);
   last_enqueued_ = back;
@@ -162,6 +163,7 @@ void Sender::continue_after_reset(long long last_number, long long restore, int 
                                   const ResumeTrack& track, std::uint64_t source_line) {
   next_number_ = next_send_ = last_number + 1;
   highest_sent_ = journaled_ = last_number;
+  resent_above_highest_ = 0;
   handshake_.number_on_from(last_number);
   last_acked_.number = last_number;
   first_held_ = last_number + 1;

@@ -364,6 +364,7 @@ class Sender : private TimeSink, private PrintHistory {
   long long next_number_ = 1;   // the number the next submitted command gets
   long long next_send_ = 1;     // the next number to transmit
   long long highest_sent_ = 0;
+  long long resent_above_highest_ = 0;  // make_room_for_own: sent lines moved past highest_sent_
   long long journaled_ = 0;     // the highest number the journal has a record of
   double queued_end_ = 0;       // when the answered moves end, by their estimates (Klipper's held oks)
   InFlight flight_;
