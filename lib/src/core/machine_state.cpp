@@ -27,8 +27,9 @@ Fixed word_mm(const Word& w, bool inches) {
   if (!inches) return v;
   // 25.4 = 254 / 10: exact for inch values with up to eight decimals.
   std::int64_t u = v.units();
-  if (u > Fixed::kMax / 26) return Fixed::from_units(Fixed::kMax);
-  if (u < -Fixed::kMax / 26) return Fixed::from_units(-Fixed::kMax);
+  // (Past kMax / 254 the product below would overflow, not just saturate.)
+  if (u > Fixed::kMax / 254) return Fixed::from_units(Fixed::kMax);
+  if (u < -Fixed::kMax / 254) return Fixed::from_units(-Fixed::kMax);
   std::int64_t t = u * 254;
   return Fixed::from_units(t >= 0 ? (t + 5) / 10 : (t - 5) / 10);
 }

@@ -71,6 +71,17 @@ TEST_CASE("inches are converted to mm, F too", "[machine_state]") {
   CHECK(s.position[kX] == Approx(1));
 }
 
+TEST_CASE("inches too many to be millimetres saturate at the exact range, as mm values do", "[machine_state]") {
+  // (fuzz_pipeline under UBSan: 1e8 in was multiplied by 254 past int64.)
+  gcode::MachineState s;
+  apply(s, "G20");
+  apply(s, "G1 X100000000 Y-100000000");
+  CHECK(s.exact[kX] == gcode::Fixed::from_units(gcode::Fixed::kMax));
+  CHECK(s.exact[kY] == gcode::Fixed::from_units(-gcode::Fixed::kMax));
+  apply(s, "G1 X1000");  // within range: exact
+  CHECK(s.position[kX] == Approx(25400));
+}
+
 TEST_CASE("G91 relative moves and travel vs extrusion", "[machine_state]") {
   gcode::MachineState s;
   apply(s, "G1 X5 Y5 Z1");
