@@ -46,6 +46,7 @@ class KlipperDialect final : public ReplyDialect {
       k.buffer_seconds = 1.0;  // measured on klippy: a move's ok waits once about 1 s of motion is queued
       k.reads_everything = true;
       k.moves_need_homing = true;
+      k.homing_failure_halts = false;  // homing.py raises a command error: "!! ...", then ok
       k.shutdown_answers = true;
       k.report_on_ok = true;
       k.empty_move_waits = false;  // answered at once: its queue is seconds of motion, not blocks
@@ -74,6 +75,8 @@ class KlipperDialect final : public ReplyDialect {
   std::string unknown_command(std::string_view code) const override {
     return fmt::format("// Unknown command:\"{}\"", code.substr(0, code.find(' ')));
   }
+  // homing.py's error when the endstop did not trigger.
+  std::string homing_failed() const override { return "!! No trigger on x after full movement"; }
   std::string not_homed(double x, double y, double z, double e) const override {
     return fmt::format("!! Must home axis first: {:.3f} {:.3f} {:.3f} [{:.3f}]", x, y, z, e);
   }

@@ -19,6 +19,7 @@ class RrfDialect final : public ReplyDialect {
       DialectBehaviour r;
       r.busy_keepalive = false;
       r.moves_need_homing = true;  // M564 H1, the default since 1.21
+      r.homing_failure_halts = false;  // not checked against RepRapFirmware: an error, then ok
       r.empty_move_waits = false;  // not checked against RepRapFirmware: taken as answered at once
       return r;
     }();

@@ -506,7 +506,8 @@ bool VirtualPrinter::process_G4(const Line& line, double t) {
 
 // G28, G29: homing or probing, after the moves before it.
 bool VirtualPrinter::process_G28(double t) {
-  homed_ = true;
+  homed_ = !config_.home_fails;
+  homing_fails_ = config_.home_fails;
   return wait_for_planner(t, After::Home, config_.instant_moves ? 0 : kHomingTime);
 }
 
@@ -618,6 +619,7 @@ void VirtualPrinter::finish(double t) {
     std::fprintf(log_, "%.6f\t%lld\t%.3f\t%.3f\t%.3f\t%.5f\t%s\n", t, c.number, state_.position[kX],
                  state_.position[kY], state_.position[kZ], state_.position[kE], c.text.c_str());
   }
+  if (homing_fails_) fail_homing();
   if (!ok_sent_) send_ok(c.number);
   ok_sent_ = false;
   if (chance(config_.garbage)) {
@@ -634,6 +636,7 @@ void VirtualPrinter::finish(double t) {
     halt("Heater extruder not heating at expected rate");
   }
   if (done == config_.silent_after) silent_ = true;
+  if (done == config_.unhome_after) homed_ = false;
   if (done == config_.disconnect_after) disconnected_ = true;
   spare_.push_back(std::move(c));
   queue_.pop_front();

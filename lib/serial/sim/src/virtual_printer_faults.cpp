@@ -47,6 +47,7 @@ void VirtualPrinter::reset(double t) {
   hotend_target_ = bed_target_ = 0;
   state_ = MachineState{};
   homed_ = false;
+  homing_fails_ = false;
   last_n_ = 0;
   halted_ = silent_ = false;
   flavour_.restarted();

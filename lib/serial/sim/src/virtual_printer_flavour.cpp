@@ -92,6 +92,18 @@ void VirtualPrinter::halt(std::string_view why) {
   after_ = After::Nothing;
 }
 
+// home-fails: the G28 under way ended without reaching its endstop. Marlin
+// kills (VALIDATE_HOMING_ENDSTOPS), saying only that it halted; Klipper
+// answers G28 with the error and its ok, unhomed.
+void VirtualPrinter::fail_homing() {
+  homing_fails_ = false;
+  if (dialect_->behaviour().homing_failure_halts) {
+    halt("Homing Failed");
+  } else {
+    send(dialect_->homing_failed());
+  }
+}
+
 // Klipper's extended commands it knows; FIRMWARE_RESTART and RESTART
 // restart it once their ok is out (the pseudo-terminal stays).
 bool VirtualPrinter::process_extended(const Line& line) {

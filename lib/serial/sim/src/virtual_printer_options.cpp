@@ -118,6 +118,10 @@ void parse_virtual_options(std::string_view text, VirtualPrinterConfig& c) {
       c.halt_after = static_cast<long long>(count(0));
     } else if (key == "disconnect-after") {
       c.disconnect_after = static_cast<long long>(count(0));
+    } else if (key == "home-fails") {
+      c.home_fails = parse_flag(key, value);
+    } else if (key == "unhome-after") {
+      c.unhome_after = static_cast<long long>(count(0));
     } else if (key == "log") {
       c.log_path = std::string(value);
     } else if (key == "greeting") {

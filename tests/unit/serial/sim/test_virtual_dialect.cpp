@@ -86,6 +86,39 @@ TEST_CASE("virtual Klipper: moves answered at once until about 1 s of motion is 
   CHECK(answers(p, 5.6).size() == 2);
 }
 
+TEST_CASE("virtual printer: home-fails and unhome-after, on Klipper and on Marlin", "[serial][dialect]") {
+  VirtualPrinterConfig c = flavour("klipper");
+  parse_virtual_options("home-fails,unhome-after=3", c);
+  CHECK(c.home_fails);
+  CHECK(c.unhome_after == 3);
+  CHECK_THROWS_AS(parse_virtual_options("unhome-after=-1", c), std::invalid_argument);
+  // Klipper: the homing error, then G28's ok; unhomed, the move is refused.
+  c = flavour("klipper");
+  c.home_fails = true;
+  VirtualPrinter k(c);
+  k.receive("G28\nG1 X10 F600\n", 0);
+  CHECK(answers(k, 5) == Lines{"!! No trigger on x after full movement", "ok",
+                               "!! Must home axis first: 0.000 0.000 0.000 [0.000]", "ok"});
+  CHECK_FALSE(k.homed());
+  // Homed, then its motors go off after the third command.
+  c = flavour("klipper");
+  c.unhome_after = 3;
+  VirtualPrinter u(c);
+  u.receive("G28\nG1 X10 F600\nG1 X20\nG1 X30\n", 0);
+  Lines a = answers(u, 10);
+  CHECK(a == Lines{"ok", "ok", "ok", "!! Must home axis first: 20.000 0.000 0.000 [0.000]", "ok"});
+  CHECK_FALSE(u.homed());
+  // Marlin: kill(), then silence.
+  c = flavour("marlin2");
+  c.home_fails = true;
+  VirtualPrinter m(c);
+  CHECK(answers(m, 1) == Lines{"start"});
+  m.receive("G28\nG1 X10 F600\n", 1);
+  // (3 s of homing, a keepalive after 2 s.)
+  CHECK(answers(m, 6) == Lines{"echo:busy: processing", "Error:Printer halted. kill() called!"});
+  CHECK(m.halted());
+}
+
 TEST_CASE("virtual Klipper: M112 shuts it down, every command refused with its ok until FIRMWARE_RESTART",
           "[serial][dialect]") {
   VirtualPrinter p(flavour("klipper"));

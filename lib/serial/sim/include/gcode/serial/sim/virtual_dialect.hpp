@@ -58,6 +58,11 @@ struct DialectBehaviour {
   // _buffer_steps); false: answered at once.
   bool empty_move_waits = true;
   bool moves_need_homing = false;   // a move before G28 is refused, with its ok (Klipper, RepRapFirmware)
+  // A homing that does not reach its endstop kills the firmware (Marlin's
+  // VALIDATE_HOMING_ENDSTOPS, on by default: kill(), "Printer halted");
+  // false: G28 is answered with ReplyDialect::homing_failed() and its ok,
+  // and the printer stays unhomed (Klipper).
+  bool homing_failure_halts = true;
   // Halted, it still answers: every command refused with its ok until
   // FIRMWARE_RESTART (Klipper). false: it says nothing more (Marlin's kill()).
   bool shutdown_answers = false;
@@ -94,6 +99,8 @@ class ReplyDialect {
   virtual std::string unknown_command(std::string_view code) const;
   // A move before homing (behaviour().moves_need_homing), at the position given.
   virtual std::string not_homed(double x, double y, double z, double e) const;
+  // The error before G28's ok when its homing failed (homing_failure_halts false).
+  virtual std::string homing_failed() const { return "Error:Homing Failed"; }
   // A command refused while shut down (behaviour().shutdown_answers), `why`
   // the shutdown's reason; its ok follows.
   virtual std::vector<std::string> refused_while_shut_down(std::string_view why) const;

@@ -179,6 +179,7 @@ class VirtualPrinter {
   void drop_head();
   bool moves_axes(const Line& line) const;
   void halt(std::string_view why);
+  void fail_homing();
   bool process_extended(const Line& line);
   bool process_M600(double t);
   bool process_M601(double t);
@@ -249,6 +250,7 @@ class VirtualPrinter {
   FaultSchedule schedule_;
   LinkOutage outage_;
   bool homed_ = false;
+  bool homing_fails_ = false;  // the G28 under way ends without its endstop (home-fails)
   int layer_ = 0, started_layer_ = 0;  // started_layer_: by the command executing
   double top_z_ = -1e300;
   std::mt19937 rng_;

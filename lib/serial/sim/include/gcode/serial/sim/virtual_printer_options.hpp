@@ -59,6 +59,8 @@ struct VirtualPrinterConfig {
   long long silent_after = -1;     // stop answering after this many commands
   long long halt_after = -1;       // report a fatal error after this many commands
   long long disconnect_after = -1; // drop the link after this many commands
+  bool home_fails = false;         // every G28 fails: an endstop that never triggers
+  long long unhome_after = -1;     // forget the homing after this many commands (motors switched off)
   std::vector<ScheduledFault> scheduled;      // resets and link drops at chosen moments
   GreetingForm greeting = GreetingForm::Start; // how a reset board greets
   std::uint32_t seed = 1;
@@ -70,7 +72,7 @@ struct VirtualPrinterConfig {
 // write-timeout=10, scripted-errors, instant-moves: OctoPrint's virtual printer's defaults) max-line planner
 // time-scale speed-factor advanced-ok instant-moves simulated-clock
 // report-link heat-rate corrupt drop-ok resend garbage busy silent-after
-// halt-after disconnect-after seed log greeting, and scheduled faults
+// halt-after disconnect-after home-fails unhome-after seed log greeting, and scheduled faults
 // (virtual_fault.hpp: "reset@line=N", "drop=S@time=T"). Throws std::invalid_argument naming a bad key or value.
 void parse_virtual_options(std::string_view text, VirtualPrinterConfig& config);
 
