@@ -158,6 +158,91 @@ TEST_CASE("gc-send on Klipper: a shutdown mid-print is reported as failed, not d
   CHECK(number_after(r.err.substr(summary), ", time ") > 0);
 }
 
+namespace {
+
+// Whether an executed command moved an axis or the extruder (a refused move
+// is not in the log; a feed-rate-only G1 or a pace probe moves nothing).
+bool moves(const std::string& command) {
+  if (command.rfind("G1 ", 0) != 0 && command.rfind("G0 ", 0) != 0) return false;
+  for (const char* axis : {" X", " Y", " Z", " E"})
+    if (command.find(axis) != std::string::npos) return true;
+  return false;
+}
+
+// A run on a printer that cannot move where the file says: status 1, the
+// reason, "failed"; after `from` (a log index) nothing moved, and the
+// print ended with the cancel G-code (heaters and motors off).
+void check_stopped_unhomed(const gctest::RunResult& r, const std::vector<gctest::Executed>& log, std::size_t from,
+                           const std::string& why) {
+  CHECK(r.status == 1);
+  CHECK(r.err.find(why) != std::string::npos);
+  CHECK(r.err.find("the print stops after input line ") != std::string::npos);
+  CHECK(r.err.find("gc-send: failed ") != std::string::npos);
+  CHECK(r.err.find("gc-send: done ") == std::string::npos);
+  CHECK(r.err.find("to go on with it") == std::string::npos);  // heaters off: nothing to resume
+  REQUIRE(log.size() >= from + 5);
+  for (std::size_t i = from; i < log.size(); ++i) {
+    INFO(log[i].command);
+    CHECK_FALSE(moves(log[i].command));
+  }
+  std::vector<std::string> tail;
+  for (std::size_t i = log.size() - 5; i < log.size(); ++i) tail.push_back(log[i].command);
+  CHECK(tail == std::vector<std::string>{"M104 S0", "M140 S0", "M107", "M84", "M400"});
+}
+
+}  // namespace
+
+TEST_CASE("gc-send on Klipper: a homing that fails stops the print with heaters and motors off, status 1",
+          "[gc-send][flavour]") {
+  // Klipper answers a G28 whose endstop never triggered with "!! No trigger
+  // on x after full movement" and its ok, and refuses every move after it:
+  // streaming on would heat for the length of the print and end "done".
+  std::string dir = gctest::temp_dir();
+  std::string log = dir + "/executed.log", journal = dir + "/print.journal";
+  auto r = gctest::run(quote(tool_path("gc-send")) + " --journal " + quote(journal) + " --port virtual:" +
+                       printer(kFlavours[1]) + ",simulated-clock,home-fails,log=" + log + " " +
+                       quote(pieces_of(kFlavours[1].fixture)));
+  INFO(r.err);
+  auto executed = gctest::read_log(log);
+  std::size_t g28 = 0;
+  while (g28 < executed.size() && executed[g28].command.rfind("G28", 0) != 0) ++g28;
+  REQUIRE(g28 < executed.size());
+  check_stopped_unhomed(r, executed, g28,
+                        "homing failed: the printer answered G28 with \"No trigger on x after full movement\"");
+}
+
+TEST_CASE("gc-send on Klipper: homing lost mid-print (motors switched off) stops the print, status 1",
+          "[gc-send][flavour]") {
+  std::string dir = gctest::temp_dir();
+  std::string log = dir + "/executed.log";
+  auto r = gctest::run(quote(tool_path("gc-send")) + " --port virtual:" + printer(kFlavours[1]) +
+                       ",simulated-clock,unhome-after=600,log=" + log + " " + quote(pieces_of(kFlavours[1].fixture)));
+  INFO(r.err);
+  auto executed = gctest::read_log(log);
+  // The printer's 600 commands are the handshake's M110 and M115 (not in
+  // read_log's list) and 598 of the file's: moves ran up to there, none after.
+  const std::size_t unhomed = 600 - 2;
+  REQUIRE(executed.size() > unhomed);
+  bool moved_before = false;
+  for (std::size_t i = 0; i < unhomed; ++i) moved_before = moved_before || moves(executed[i].command);
+  CHECK(moved_before);
+  check_stopped_unhomed(r, executed, unhomed, "the printer lost its homing (\"Must home axis first: ");
+}
+
+TEST_CASE("gc-send on Marlin: a homing that fails is its kill(), a fatal error", "[gc-send][flavour]") {
+  // Marlin's VALIDATE_HOMING_ENDSTOPS (on by default): kill(), "Printer halted", then silence.
+  std::string dir = gctest::temp_dir();
+  std::string log = dir + "/executed.log";
+  auto r = gctest::run(quote(tool_path("gc-send")) + " --port virtual:" + printer(kFlavours[0]) +
+                       ",simulated-clock,home-fails,log=" + log + " " + quote(pieces_of(kFlavours[0].fixture)));
+  INFO(r.err);
+  CHECK(r.status == 1);
+  CHECK(r.err.find("the printer reported a fatal error: Printer halted. kill() called!") != std::string::npos);
+  auto executed = gctest::read_log(log);
+  REQUIRE_FALSE(executed.empty());
+  CHECK(executed.back().command.rfind("G28", 0) == 0);  // nothing ran after it
+}
+
 TEST_CASE("gc-send on Prusa: its own pause (M601) and M600 wait for the user, no timeout however long",
           "[gc-send][flavour]") {
   std::string dir = gctest::temp_dir();

@@ -400,9 +400,10 @@ void PrintControl::resume() {
   for (const Held& h : pending) process(h.command, h.source, h.layer, h.after, h.host_pause, h.extruding);
 }
 
-void PrintControl::cancel() {
+// `move_away`: retract, lift and park first (not when the printer cannot move).
+void PrintControl::cancel(bool move_away) {
   if (state_ == PrintState::Cancelling) return;
-  bool parked = state_ == PrintState::Paused && stop_.own_block;
+  bool parked = !move_away || (state_ == PrintState::Paused && stop_.own_block);
   rush_.set_enabled(false);
   held_.clear();
   if (swap_) diag_.info(fmt::format("cancel: swap {} called off", swap_->path()));
@@ -427,8 +428,17 @@ void PrintControl::cancel() {
   holding_ = true;
   submit_lines(lines, layer_);
   sender_.end_of_input();
+  if (!move_away) return;
   diag_.error(fmt::format("cancelled after input line {} (layer {}): {}", last_source_, layer_,
                           parked ? "heaters and motors off" : "retract, lift, park, heaters and motors off"));
+}
+
+void PrintControl::lost(std::string_view why, double now) {
+  if (state_ == PrintState::Cancelling) return;  // its safe end is on its way
+  now_ = now;
+  cancel(false);
+  diag_.error(fmt::format("{}: the print stops after input line {} (layer {}); heaters and motors off", why,
+                          last_source_, layer_));
 }
 
 // A cancel's end from `at`: retract, lift and park (unless `parked` by a

@@ -341,7 +341,10 @@ void prepare_session(SendSession& session, const SendJob& job, PrinterLink& link
 SendOutcome finish(const Sender& sender, SendSession& session, PrinterLink& link, SendJournal* journal,
                    const SendJob& job, const std::string& input, Diagnostics& diag) {
   const SenderState state = sender.state();
-  if (journal != nullptr && (state == SenderState::Done || state == SenderState::Cancelled))
+  // A print the printer could not go on with ended with its safe end (heaters
+  // off): nothing to resume, as after a cancel.
+  const bool lost = !sender.lost().empty();
+  if (journal != nullptr && (state == SenderState::Done || state == SenderState::Cancelled || lost))
     journal->finish(EventLoop::now());
   if (!job.quiet) print_summary(sender, link, *session.control(), diag);
   if (journal != nullptr && !job.quiet) print_journal_summary(journal->writer(), diag);
@@ -350,7 +353,7 @@ SendOutcome finish(const Sender& sender, SendSession& session, PrinterLink& link
   if (state == SenderState::Done) return {SendEnd::Finished, {}};
   if (state == SenderState::Cancelled) return {SendEnd::EmergencyStop, {}};
   diag.report(sender.failure());
-  if (journal != nullptr && sender.last_acknowledged().number > 0)
+  if (journal != nullptr && !lost && sender.last_acknowledged().number > 0)
     diag.report(fmt::format("the journal holds the print; to go on with it: {}",
                             resume_command(journal->writer().path(), input, job.port)));
   return {SendEnd::Failed, sender.failure()};

@@ -124,6 +124,7 @@ void SendSession::set_control(const PrintControlConfig& config, const std::strin
   if (resumed_layer_ > 0) control_->continue_in_layer(resumed_layer_);
   if (line_base_ > 0) control_->objects().continue_from(printed_objects_.tracker());
   sender_.set_action_handler([this](std::string_view action) { control_->action(action, EventLoop::now()); });
+  sender_.set_lost_handler([this](std::string_view why) { control_->lost(why, EventLoop::now()); });
   control_->on_status = [this] {
     if (progress_) progress_->print_line(snapshot());
   };

@@ -156,6 +156,17 @@ ErrorClass classify_error(std::string_view m) {
   return ErrorClass::Recoverable;
 }
 
+bool says_not_homed(std::string_view message) {
+  std::string_view m = trim_noise(message);
+  if (contains_nocase(m, "must home") || contains_nocase(m, "axes homed")) return true;
+  return starts_with_nocase(m, "home ") && contains_nocase(m, " first");
+}
+
+bool says_homing_failed(std::string_view message) {
+  return contains_nocase(message, "no trigger on") || contains_nocase(message, "still triggered") ||
+         contains_nocase(message, "triggered prior to movement") || contains_nocase(message, "homing failed");
+}
+
 bool is_reset_note(std::string_view text) {
   static constexpr std::string_view kNotes[] = {"External Reset", "Watchdog Reset", "Brown out Reset",
                                                 "Software Reset", "Power-up"};

@@ -382,14 +382,22 @@ void Sender::check_done(double now) {
   if (state_ == SenderState::Printing && !relocator_.active() && input_done_ &&
       (final_queued_ || !config_.finish_with_m400) &&
       next_send_ == next_number_ && !lines_in_flight() && !resend_.settling() && next_number_ > 1) {
-    if (refusal_.empty()) {
-      state_ = SenderState::Done;
-    } else {
+    if (!refusal_.empty()) {
       fail(refusal_);
+    } else if (!lost_.empty()) {
+      fail(lost_);  // its safe end went out
+    } else {
+      state_ = SenderState::Done;
     }
     stats_.print_end = now;
   }
-  if (cancelled_ && state_ != SenderState::Failed && flight_.empty()) state_ = SenderState::Cancelled;
+  if (cancelled_ && state_ != SenderState::Failed && flight_.empty()) {
+    if (lost_.empty()) {
+      state_ = SenderState::Cancelled;
+    } else {
+      fail(lost_);
+    }
+  }
 }
 
 void Sender::acknowledge_front(double now, int planner_free) {
@@ -406,6 +414,7 @@ void Sender::acknowledge_front(double now, int planner_free) {
     return;
   }
   const Slot& s = slot(f.number);
+  homing_.acknowledged(command_of_numbered(s.wire));
   clock_.answered(s.move ? s.motion : 0, now, s.move ? s.nominal : 0);
   if (s.move) queued_end_ = std::max(queued_end_, now) + s.motion / config_.time_scale;
   planned(s, f, now, planner_free);
@@ -637,6 +646,8 @@ void Sender::on_line(std::string_view text, double now) {
         log(LogLevel::Warning, 0, fmt::format("the printer did not take a command: {}", r.text));
       } else {
         log(LogLevel::Info, 0, fmt::format("printer: {}", r.text));
+        // Marlin refuses a move so when it does not know where it is.
+        if (std::string why = homing_.message(r.text); !why.empty()) print_lost(std::move(why));
       }
       // Marlin's boot after the reset pin ("start" may have been lost).
       if (is_reset_note(r.text)) on_start(r.text, now);
@@ -673,6 +684,26 @@ void Sender::on_error(const Response& r, double now) {
   } else {
     log(r.error == ErrorClass::Recoverable ? LogLevel::Warning : LogLevel::Info, 0,
         fmt::format("printer error: {}", r.text));
+    if (r.error != ErrorClass::Recoverable) return;
+    if (std::string why = homing_.error(r.text, oldest_command()); !why.empty()) print_lost(std::move(why));
+  }
+}
+
+std::string_view Sender::oldest_command() const {
+  if (flight_.empty() || flight_.front().own != InFlight::Own::None || flight_.front().number <= 0) return {};
+  return command_of_numbered(slot(flight_.front().number).wire);
+}
+
+// The printer cannot put the file's moves where they belong: the rest of
+// the file is not sent; what goes out is the handler's safe end.
+void Sender::print_lost(std::string why) {
+  if (!lost_.empty() || state_ != SenderState::Printing || cancelled_) return;
+  lost_ = std::move(why);
+  if (on_lost_) {
+    on_lost_(lost_);  // (it says so, with where the print stopped)
+  } else {
+    log(LogLevel::Warning, 0, lost_ + "; the print stops");
+    cancel();
   }
 }
 

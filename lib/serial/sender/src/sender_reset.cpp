@@ -49,6 +49,7 @@ void Sender::took_back() {
 
 void Sender::printer_reset(std::string_view how, double now) {
   if (finished()) return;
+  homing_.forget();  // the way back homes X and Y again
   const long long back = recovery_.back_to(*this, last_acked_.number, clock_.planner_blocks(), next_number_);
   if (back < 0) {
     fail(fmt::format("the printer reset ({}) and the commands it may have lost are no longer held; last "

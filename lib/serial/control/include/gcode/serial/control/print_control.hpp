@@ -118,6 +118,10 @@ class PrintControl {
   void action(std::string_view text, double now);
   // Ctrl-C: the first cancels; returns false from the second on.
   bool interrupt();
+  // The printer cannot move where the file says (Sender::set_lost_handler):
+  // the print ends with heaters and motors off and no park (a move would
+  // be refused).
+  void lost(std::string_view why, double now);
   // Call after the sender moved: notes when a pause block is done.
   void update(double now);
 
@@ -199,7 +203,7 @@ class PrintControl {
   void hold_here(std::string request);
   void stop_at(const MachineState& at, const MachineState& resume_from, bool own_block);
   void resume();
-  void cancel();
+  void cancel(bool move_away = true);
   std::vector<std::string> safe_end(const MachineState& at, bool parked);
   void user_gcode(const std::string& text);
   void insert_file(const std::string& path);

@@ -67,6 +67,15 @@ bool is_restart_line(std::string_view line);
 bool is_reset_note(std::string_view text);
 
 ErrorClass classify_error(std::string_view message);
+// Whether a message says a move was refused because the printer is not
+// homed: Marlin's "Home XYZ First" (or "Home X First"), Klipper's "Must
+// home axis first: ...", RepRapFirmware's "G0/G1: insufficient axes homed".
+bool says_not_homed(std::string_view message);
+// Whether an error says a homing failed, whichever command it answers (a
+// start macro that homes): Klipper's "No trigger on x after full movement",
+// "Endstop x still triggered after retract", "Probe triggered prior to
+// movement"; "Homing failed".
+bool says_homing_failed(std::string_view message);
 
 // The code of a G-code line as it goes to the firmware: comment and blanks
 // gone, an existing "N123 " prefix and "*71" checksum removed (the sender

@@ -33,6 +33,7 @@
 #include "gcode/serial/protocol/resend.hpp"
 #include "gcode/serial/protocol/reset_sequence.hpp"
 #include "gcode/serial/sender/handshake.hpp"
+#include "gcode/serial/sender/homing_watch.hpp"
 #include "gcode/serial/sender/relocator.hpp"
 #include "gcode/serial/sender/reset_recovery.hpp"
 
@@ -169,6 +170,14 @@ class Sender : private TimeSink, private PrintHistory {
   // handler a pause holds sending until the resume.
   using ActionHandler = std::function<void(std::string_view action)>;
   void set_action_handler(ActionHandler handler) { on_action_ = std::move(handler); }
+  // The print cannot go on (homing_watch.hpp: the homing failed or was
+  // lost): the handler ends it safely (heaters and motors off), and once
+  // that is done the print fails with `why`. Without a handler the print
+  // is cancelled (nothing more is sent) and fails.
+  using LostHandler = std::function<void(std::string_view why)>;
+  void set_lost_handler(LostHandler handler) { on_lost_ = std::move(handler); }
+  // Why the print cannot go on (empty while it can).
+  const std::string& lost() const { return lost_; }
   // The journal's hooks (send_journal.hpp): a command got its number, with
   // the machine state after it (called before its bytes can go out); the
   // printer acknowledged a numbered line.
@@ -314,6 +323,10 @@ class Sender : private TimeSink, private PrintHistory {
   void note_temperatures(const Response& r, std::string_view text);
   void set_link(double bytes_per_second, double time_scale);
   void fail(std::string message);
+  void print_lost(std::string why);
+  // The command of the oldest line in flight (an error answers it), empty
+  // when that is none of the file's.
+  std::string_view oldest_command() const;
   void check_done(double now);
   void probe(double now, bool silent);
   void handshake_timer(double now);
@@ -386,6 +399,8 @@ class Sender : private TimeSink, private PrintHistory {
   int learnt_planner_ = 0;      // planner blocks seen in ADVANCED_OK's P
   std::size_t written_off_ = 0; // answers to come for our M105s taken with an earlier one's
   std::string refusal_;         // why the input stopped early (a line the firmware cannot take)
+  HomingWatch homing_;          // whether the printer can still move where the file says
+  std::string lost_;            // why the print cannot go on (homing_watch.hpp)
 
   ResendState resend_;
 
@@ -409,6 +424,7 @@ class Sender : private TimeSink, private PrintHistory {
   std::string failure_;
   bool trace_ = false;
   ActionHandler on_action_;
+  LostHandler on_lost_;
   NumberedHook on_numbered_;
   AcknowledgedHook on_acknowledged_;
   std::string temperatures_;
