@@ -54,7 +54,10 @@
 // and the speed learnt on their word is forgotten. Probes that come late
 // as the model said space the next ones (probe_spacing.hpp): at the file's
 // pace a probe went with every held move; the model's own wake lets the
-// moves go between them, and the floor is not forgotten meanwhile.
+// moves go between them, and the floor is not forgotten meanwhile. A probe
+// that waited also says when the moves behind its block began (not before
+// it arrived): the floor's closest measure of a printer faster than the
+// file, so that the model keeps up with it and its probes confirm it.
 #include <algorithm>
 #include <array>
 #include <cstddef>
@@ -123,7 +126,7 @@ class Pacer {
     double entered;   // when it was answered
     double seconds;   // its length at its feed rate, in the sender's seconds
     double end;       // when the model says it ends
-    double released;  // when it was handed to the port (kNever: not known)
+    double not_before;  // it started no earlier (handed to the port, or a probe waited for the block before it; kNever: not known)
   };
   struct Released {
     long long number = -1;
@@ -136,6 +139,7 @@ class Pacer {
   long long oldest() const { return std::max(answered_ - static_cast<long long>(kHistory) + 1, 1LL); }
   const Planned* next_to_end(double now, int planner_blocks) const;
   bool waited_for_block(double late, bool bounded, long long block) const;
+  bool confirms_model(double said, double arrival, double entered, double late, long long freed) const;
   bool outpaced_by_probes(double now);
   void heard_wait(double late, bool bounded, long long freed, bool probes_move);
   bool observe(long long freed, double entered, double late, bool bounded, bool probe);
