@@ -259,7 +259,7 @@ void Pacer::probe_answered(double now, double arrival, int planner_blocks) {
 // before that: at 2 x a move's and the probe's lines take half a block on
 // the wire, so a probe sent as the model filled the planner arrived with
 // little of that block left, and, answered as the model said, seemed to
-// find room (1718 probes for 5983 lines; a probe per held move again).
+// find room (1596 probes for 5983 lines; a probe per held move again).
 // When the model says the block ended before the probe arrived (at 10 x,
 // the link the limit), its answer tells nothing of the model's pace.
 bool Pacer::confirms_model(double said, double arrival, double entered, double late, long long freed) const {
@@ -291,10 +291,12 @@ bool Pacer::release(long long number, double now) {
 
 // What the printer has shown it does at least: move `freed` had ended when
 // the move just answered found a block (`now`), and no move starts before
-// it was handed to the port. So the moves from any one kept up to `freed`
-// ran, at the file's feed rates, within the time from that one's release to
-// `now`: a speed the printer reached whatever the host's latency did to the
-// answers' times (late answers, late releases only lower it), the best of
+// it was handed to the port, nor before a probe that waited for the block
+// ahead of it arrived. So the moves from any one kept up to `freed` ran, at
+// the file's feed rates, within the time from that one's start at the
+// earliest to `now`: a speed the printer reached whatever the host's
+// latency did to the answers' times (late answers, late releases only
+// lower it), the best of
 // those spans a floor for the factor that never stands above the printer's
 // real pace, as a factor learnt from timing can. (It takes a planner of the
 // size assumed; one that holds more would let moves on unseen.)
