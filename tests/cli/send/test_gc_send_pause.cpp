@@ -615,18 +615,20 @@ TEST_CASE("gc-send pacing: a printer ten times as fast, which the link cannot ke
   CHECK(r.paced <= r.unpaced + 6);
 }
 
-TEST_CASE("gc-send pacing: probes go only where the model is in doubt, at most 5 % of the lines at 1 x, 7 % at 10 x", "[gc-send][pace]") {
+TEST_CASE("gc-send pacing: probes go only where the model is in doubt, at most 5 % of the lines at 1 x, 9 % at 2 x, 7 % at 10 x", "[gc-send][pace]") {
   // Issue 41: a probe per held move at the file's pace (5392 for these
-  // 5983 lines at 1 x, 441 at 10 x). Probes that come late, as the model
-  // said, space the next ones (probe_spacing.hpp): 243 at 1 x, 381 at 10 x,
-  // 10 x still within 1.10 of --no-pace.
+  // 5983 lines at 1 x, 441 at 10 x). Probes that come as the model said
+  // space the next ones (probe_spacing.hpp): 252 at 1 x, 499 at 2 x, 350
+  // at 10 x, each within 1.07 of --no-pace. (At 2 x a probe answered as
+  // the model said comes soon after it arrives, and the model's pace is
+  // learnt from probes' waits: taken for room, 1596 went.)
   std::string file = gctest::temp_dir() + "/long.gcode";
   auto made = gctest::run(quote(tool_path("gc-subdivide")) + " --max 0.2 " +
                           quote(gctest::fixture_path("prusa_cube_0.2_mk3s_rel_zhop.gcode")) +
                           " | awk 'BEGIN { print \"G28\"; print \"G90\"; print \"M83\" } "
                           "/^;LAYER_CHANGE/ { on = 1 } on && k++ < 6000' > " + quote(file));
   REQUIRE(made.status == 0);
-  for (double speed : {1.0, 10.0}) {
+  for (double speed : {1.0, 2.0, 10.0}) {
     double seconds[2] = {0, 0};
     for (bool paced : {true, false}) {
       auto r = gctest::run(quote(tool_path("gc-send")) + (paced ? "" : " --no-pace") +
@@ -641,7 +643,7 @@ TEST_CASE("gc-send pacing: probes go only where the model is in doubt, at most 5
       const double probes = number_after(summary, "pace probes ");
       INFO(probes << " probes for " << lines << " lines at " << speed << " x");
       CHECK(lines > 5900);
-      CHECK(probes <= (speed > 1 ? 0.07 : 0.05) * lines);
+      CHECK(probes <= (speed == 1 ? 0.05 : speed == 2 ? 0.09 : 0.07) * lines);
     }
     INFO(seconds[0] << " s paced against " << seconds[1] << " s unpaced at " << speed << " x");
     CHECK(seconds[0] <= 1.10 * seconds[1]);

@@ -222,8 +222,18 @@ void Pacer::probe_answered(double now, double arrival, int planner_blocks) {
     return;
   }
   const Timing t = timing(now, arrival);
+  const double said = move(freed).end;  // the model's, before the answer corrects it
   const bool waited = observe(freed, t.entered, t.late, t.apart, true);
-  if (waited) ++late_probes_;
+  if (waited) {
+    ++late_probes_;
+    // It waited for block `freed`, which so ended after it arrived: the
+    // move behind began no earlier. From its release instead, the floor
+    // counted the time it sat in a full planner (a planner's worth of
+    // blocks), stayed at 1.75-1.94 for a printer twice as fast, and the
+    // model, that much slower, left the room its probes kept finding.
+    Planned& next = move(freed + 1);
+    next.not_before = next.not_before < kNever ? std::max(next.not_before, arrival) : arrival;
+  }
   // More moves only on a probe that came within half a block at the
   // model's pace: one a block late is a planner that is full, whatever
   // the host's latency let observe() take it for.
@@ -233,14 +243,28 @@ void Pacer::probe_answered(double now, double arrival, int planner_blocks) {
   // slower moves (a layer's first ones after its fast infill).
   link_bound_ = !waited && quick && (link_bound_ || outpaced);
   const int c = credit_.answered(!waited, link_bound_, planner_blocks);
-  // Late by a part of a block: the planner was full, as the model said.
-  spacing_.answered(waited || t.late > kGrace * move(freed).seconds / rate_.factor(), answered_);
+  spacing_.answered(waited || confirms_model(said, arrival, t.entered, t.late, freed), answered_);
   // Room, and only the model's one block for it: the next probe waits for
   // that move's answer, so a printer that answers probes at once is found
   // out by its wait before another goes.
   probe_credit_ = !waited && c == 0;
   chain();
   learn_floor(freed, now);
+}
+
+// Did a probe that found block `freed` free `late` past its arrival come
+// as the model said (it `said` the block ends then)? Late by a part of a
+// block: the planner was full. Or, when the model said the block ended
+// after the probe arrived, answered no sooner than a part of a block
+// before that: at 2 x a move's and the probe's lines take half a block on
+// the wire, so a probe sent as the model filled the planner arrived with
+// little of that block left, and, answered as the model said, seemed to
+// find room (1596 probes for 5983 lines; a probe per held move again).
+// When the model says the block ended before the probe arrived (at 10 x,
+// the link the limit), its answer tells nothing of the model's pace.
+bool Pacer::confirms_model(double said, double arrival, double entered, double late, long long freed) const {
+  const double grace = kGrace * move(freed).seconds / rate_.factor();
+  return late > grace || (said > arrival && said - entered < grace);
 }
 
 // Did the moves answered since the last probe's answer run, at the model's
@@ -267,10 +291,12 @@ bool Pacer::release(long long number, double now) {
 
 // What the printer has shown it does at least: move `freed` had ended when
 // the move just answered found a block (`now`), and no move starts before
-// it was handed to the port. So the moves from any one kept up to `freed`
-// ran, at the file's feed rates, within the time from that one's release to
-// `now`: a speed the printer reached whatever the host's latency did to the
-// answers' times (late answers, late releases only lower it), the best of
+// it was handed to the port, nor before a probe that waited for the block
+// ahead of it arrived. So the moves from any one kept up to `freed` ran, at
+// the file's feed rates, within the time from that one's start at the
+// earliest to `now`: a speed the printer reached whatever the host's
+// latency did to the answers' times (late answers, late releases only
+// lower it), the best of
 // those spans a floor for the factor that never stands above the printer's
 // real pace, as a factor learnt from timing can. (It takes a planner of the
 // size assumed; one that holds more would let moves on unseen.)
@@ -278,8 +304,8 @@ double Pacer::shown(long long freed, double now) const {
   double seconds = 0, best = 0;
   for (long long i = freed; i >= oldest() && freed - i < static_cast<long long>(kHistory); --i) {
     seconds += move(i).seconds;
-    const double took = now - move(i).released;
-    if (freed - i + 1 >= kMinShown && move(i).released < kNever && took > 0) best = std::max(best, seconds / took);
+    const double took = now - move(i).not_before;
+    if (freed - i + 1 >= kMinShown && move(i).not_before < kNever && took > 0) best = std::max(best, seconds / took);
   }
   return best * kShownMargin;
 }

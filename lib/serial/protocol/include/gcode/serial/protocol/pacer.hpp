@@ -54,7 +54,10 @@
 // and the speed learnt on their word is forgotten. Probes that come late
 // as the model said space the next ones (probe_spacing.hpp): at the file's
 // pace a probe went with every held move; the model's own wake lets the
-// moves go between them, and the floor is not forgotten meanwhile.
+// moves go between them, and the floor is not forgotten meanwhile. A probe
+// that waited also says when the moves behind its block began (not before
+// it arrived): the floor's closest measure of a printer faster than the
+// file, so that the model keeps up with it and its probes confirm it.
 #include <algorithm>
 #include <array>
 #include <cstddef>
@@ -72,7 +75,11 @@ class Pacer {
   static constexpr std::size_t kMaxBlocks = 64;
   static constexpr double kGrace = 0.25;        // of a block: how late an answer is before it waited
   static constexpr long long kMinShown = 8;     // moves a span of the printer's shown speed holds at least
-  static constexpr double kShownMargin = 0.98;  // of the shown speed: the simulated clock's own slack
+  // Of the shown speed: the simulated clock's own slack (from 1 x to 10 x
+  // the best span came to at most 1.0002 of the printer's speed). Each %
+  // less leaves the model that much slower than a printer at 1.25 x or 2 x,
+  // and its probes find the room that leaves (probe_spacing.hpp).
+  static constexpr double kShownMargin = 0.99;
   static constexpr double kFloorDecay = 0.995;  // per answered move: the shown speed is forgotten slowly
   static constexpr double kOutpaced = 0.5;      // of the moves' time at the model's pace: a probe's round trip that long may be the limit
   static constexpr double kQuick = 0.5;         // of a block at the model's pace: a probe answered within it found room at once
@@ -123,7 +130,7 @@ class Pacer {
     double entered;   // when it was answered
     double seconds;   // its length at its feed rate, in the sender's seconds
     double end;       // when the model says it ends
-    double released;  // when it was handed to the port (kNever: not known)
+    double not_before;  // it started no earlier: handed to the port, or a probe waited for the block ahead (kNever: not known)
   };
   struct Released {
     long long number = -1;
@@ -136,6 +143,7 @@ class Pacer {
   long long oldest() const { return std::max(answered_ - static_cast<long long>(kHistory) + 1, 1LL); }
   const Planned* next_to_end(double now, int planner_blocks) const;
   bool waited_for_block(double late, bool bounded, long long block) const;
+  bool confirms_model(double said, double arrival, double entered, double late, long long freed) const;
   bool outpaced_by_probes(double now);
   void heard_wait(double late, bool bounded, long long freed, bool probes_move);
   bool observe(long long freed, double entered, double late, bool bounded, bool probe);

@@ -1,11 +1,13 @@
 #pragma once
 // How many moves go between two pace probes (pacer.hpp) while they tell
 // the pacer nothing it did not know. A probe goes when the model says the
-// planner is full; one answered late (a block ended then) says the model
-// was right, and at the file's pace every probe is: a probe per held move,
-// a round trip and a line each (a clean 6000-move print at 1 x sent 5392).
+// planner is full; one answered as the model said (late: a block ended
+// then, or when the model said it ends; Pacer::confirms_model) says the
+// model was right, and at the file's pace every probe is: a probe per held
+// move, a round trip and a line each (a clean 6000-move print at 1 x sent
+// 5392; spaced, 252, and 499 at 2 x, 350 at 10 x).
 // Once the first kWarmUp probes have taught the model the printer's pace
-// (the floor rises on their answers), each late one in a row doubles the
+// (the floor rises on their answers), each such one in a row doubles the
 // moves before the next (0, 1, 3, 7 ... up to kMaxGap), as the model needs
 // no check while it holds: a printer slower than the model makes its own
 // moves wait (their answers are sightings), and a faster one drains its
