@@ -93,7 +93,7 @@ TEST_CASE("homing watch: which commands home and which answers say the printer i
   CHECK_FALSE(says_homing_failed("Must home axis first: 0.000 0.000 0.000 [0.000]"));
 }
 
-TEST_CASE("homing watch: an error answering G28 fails it; a refusal counts only once a G28 was acknowledged",
+TEST_CASE("homing watch: an error answering G28 fails it, a refusal counts only once G28 was taken",
           "[serial][homing]") {
   HomingWatch w;
   // Before any G28 a refused move is the file's own affair.
@@ -139,7 +139,7 @@ TEST_CASE("sender: a failed G28 stops the print: nothing after it goes out and t
   CHECK(r.said("; the print stops"));
 }
 
-TEST_CASE("sender: homing lost mid-print stops it; a move refused before the first G28 does not",
+TEST_CASE("sender: homing lost mid-print stops it, a move refused before the first G28 does not",
           "[serial][homing]") {
   Run r;
   std::string why;
