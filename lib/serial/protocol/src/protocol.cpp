@@ -232,6 +232,11 @@ Response parse_response(std::string_view raw) {
     r.text = body.data() != s.data() ? body : trim_noise(s.substr(2));
     // Marlin's 'echo:Unknown command: "M123"', Klipper's '// Unknown command:"M123"'.
     r.unknown_command = starts_with_nocase(r.text, "unknown command");
+    if (r.unknown_command) {
+      std::size_t quote = r.text.find('"');
+      r.lost_number = quote != std::string_view::npos && quote + 1 < r.text.size() && is_digit(r.text[quote + 1]);
+      r.unknown_command = !r.lost_number;
+    }
     // A fatal condition may also arrive as an echo on some firmware versions,
     // and Klipper announces its shutdown so ("// Klipper state: Shutdown").
     if (contains_nocase(r.text, "kill()") || contains_nocase(r.text, "printer halted") ||

@@ -644,6 +644,8 @@ void Sender::on_line(std::string_view text, double now) {
         // print goes on without it.
         ++stats_.unknown_commands;
         log(LogLevel::Warning, 0, fmt::format("the printer did not take a command: {}", r.text));
+      } else if (r.lost_number) {
+        log(LogLevel::Info, 0, fmt::format("printer: {} (a line that lost its N on the way: it is sent again)", r.text));
       } else {
         log(LogLevel::Info, 0, fmt::format("printer: {}", r.text));
         // Marlin refuses a move so when it does not know where it is.

@@ -189,6 +189,13 @@ TEST_CASE("protocol: Klipper's, Prusa's and RepRapFirmware's answers, and a gree
   CHECK(r.kind == ResponseKind::Echo);
   CHECK(r.unknown_command);
   CHECK(parse_response("echo:Unknown command: \"FOO\"").unknown_command);  // Marlin's
+  // Real Marlin, a numbered line whose "N" was lost on the way: line noise,
+  // not a command it refuses (the next line's number error brings it again).
+  r = parse_response("echo:Unknown command: \"95767 G1 X101.2 Y88.4 E0.0123*87\"");
+  CHECK(r.kind == ResponseKind::Echo);
+  CHECK(r.lost_number);
+  CHECK_FALSE(r.unknown_command);
+  CHECK_FALSE(parse_response("echo:Unknown command: \"FOO\"").lost_number);
   CHECK_FALSE(parse_response("echo:SD card ok").unknown_command);
   r = parse_response("// Klipper state: Shutdown");
   CHECK(r.kind == ResponseKind::Error);

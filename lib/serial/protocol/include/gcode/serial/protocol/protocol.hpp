@@ -53,6 +53,10 @@ struct Response {
   bool has_temperature = false;  // "ok T:..." (the answer to M105)
   ErrorClass error = ErrorClass::None;
   bool unknown_command = false;  // Echo: the firmware does not know a command it was sent
+  // Echo: the "unknown command" is a numbered line whose N was lost on the
+  // way (real Marlin: 'Unknown command: "95767 G1 X1"'): line noise, not a
+  // command the firmware refuses; the next line's number error brings it again.
+  bool lost_number = false;
   std::string_view text;    // the line without its prefix (error message, action name, ...)
 };
 
