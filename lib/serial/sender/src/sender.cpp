@@ -132,6 +132,7 @@ void Sender::enqueue(std::string_view command, std::uint64_t source_line, int la
   s.silent_wait = config_.firmware->waits_silently(line);
   s.long_running = config_.firmware->is_long_running(line);
   s.temperature_query = line.is_m(105);
+  s.homes = is_homing_command(line);
   Move move = machine_.apply(line);
   s.at = {machine_.position[kX], machine_.position[kY], machine_.position[kZ]};
   track(s, line, move);
@@ -273,7 +274,7 @@ void Sender::send_own(InFlight::Own kind, double now) {
   // Inside a way back after a reset, an own line is of it: a resume that
   // finds the printer took it makes the way back again.
   s.restore = before.restore;
-  s.long_running = s.unbounded = s.silent_wait = s.move = s.drains = s.closing = false;
+  s.long_running = s.unbounded = s.silent_wait = s.move = s.drains = s.closing = s.homes = false;
   s.temperature_query = kind == InFlight::Own::Question;
   // M105 is answered at once; the probe waits for a planner block.
   s.instant = kind == InFlight::Own::Question;
@@ -414,7 +415,7 @@ void Sender::acknowledge_front(double now, int planner_free) {
     return;
   }
   const Slot& s = slot(f.number);
-  homing_.acknowledged(command_of_numbered(s.wire));
+  homing_.acknowledged(s.homes);
   clock_.answered(s.move ? s.motion : 0, now, s.move ? s.nominal : 0);
   if (s.move) queued_end_ = std::max(queued_end_, now) + s.motion / config_.time_scale;
   planned(s, f, now, planner_free);
@@ -687,13 +688,16 @@ void Sender::on_error(const Response& r, double now) {
     log(r.error == ErrorClass::Recoverable ? LogLevel::Warning : LogLevel::Info, 0,
         fmt::format("printer error: {}", r.text));
     if (r.error != ErrorClass::Recoverable) return;
-    if (std::string why = homing_.error(r.text, oldest_command()); !why.empty()) print_lost(std::move(why));
+    const Slot* oldest = oldest_file_line();
+    std::string why = homing_.error(r.text, oldest != nullptr ? command_of_numbered(oldest->wire) : std::string_view(),
+                                    oldest != nullptr && oldest->homes);
+    if (!why.empty()) print_lost(std::move(why));
   }
 }
 
-std::string_view Sender::oldest_command() const {
-  if (flight_.empty() || flight_.front().own != InFlight::Own::None || flight_.front().number <= 0) return {};
-  return command_of_numbered(slot(flight_.front().number).wire);
+const Sender::Slot* Sender::oldest_file_line() const {
+  if (flight_.empty() || flight_.front().own != InFlight::Own::None || flight_.front().number <= 0) return nullptr;
+  return &slot(flight_.front().number);
 }
 
 // The printer cannot put the file's moves where they belong: the rest of

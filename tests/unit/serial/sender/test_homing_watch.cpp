@@ -8,10 +8,12 @@
 #include <string>
 #include <vector>
 
+#include "gcode/core/line.hpp"
 #include "gcode/serial/protocol/protocol.hpp"
 #include "gcode/serial/sender/homing_watch.hpp"
 #include "gcode/serial/sender/sender.hpp"
 
+using gcode::Line;
 using namespace gcode::serial;
 
 namespace {
@@ -71,15 +73,15 @@ const Lines kFile = {"M104 S200", "G28", "G1 X10 F600", "G1 X20", "G1 X30", "G1 
 
 TEST_CASE("homing watch: which commands home and which answers say the printer is not homed",
           "[serial][homing]") {
-  CHECK(is_homing_command("G28"));
-  CHECK(is_homing_command("g28 X Y"));
-  CHECK(is_homing_command("  G28 Z"));
-  CHECK(is_homing_command("G028"));
-  CHECK_FALSE(is_homing_command("G280"));
-  CHECK_FALSE(is_homing_command("G2 X1"));
-  CHECK_FALSE(is_homing_command("G28.1"));
-  CHECK_FALSE(is_homing_command("M28"));
-  CHECK_FALSE(is_homing_command(""));
+  CHECK(is_homing_command(Line::parse("G28")));
+  CHECK(is_homing_command(Line::parse("g28 X Y")));
+  CHECK(is_homing_command(Line::parse("  G28 Z")));
+  CHECK(is_homing_command(Line::parse("G028")));
+  CHECK_FALSE(is_homing_command(Line::parse("G280")));
+  CHECK_FALSE(is_homing_command(Line::parse("G2 X1")));
+  CHECK_FALSE(is_homing_command(Line::parse("G28.1")));
+  CHECK_FALSE(is_homing_command(Line::parse("M28")));
+  CHECK_FALSE(is_homing_command(Line::parse("")));
   CHECK(says_not_homed("Must home axis first: 10.000 10.000 0.300 [0.000]"));  // Klipper
   CHECK(says_not_homed("Home XYZ First"));                                      // Marlin
   CHECK(says_not_homed("Home X First"));
@@ -97,25 +99,25 @@ TEST_CASE("homing watch: an error answering G28 fails it, a refusal counts only 
           "[serial][homing]") {
   HomingWatch w;
   // Before any G28 a refused move is the file's own affair.
-  CHECK(w.error("Must home axis first: 5.000 0.000 0.000 [0.000]", "G1 X5 F3000").empty());
+  CHECK(w.error("Must home axis first: 5.000 0.000 0.000 [0.000]", "G1 X5 F3000", false).empty());
   CHECK(w.message("Home XYZ First").empty());
   // Any error that answers G28 is its homing failing.
-  std::string why = w.error("No trigger on x after full movement", "G28");
+  std::string why = w.error("No trigger on x after full movement", "G28", true);
   CHECK(why.find("homing failed") != std::string::npos);
   CHECK(why.find("No trigger on x after full movement") != std::string::npos);
   // A start macro that homes (Klipper's PRINT_START): its error says so.
-  CHECK(w.error("No trigger on y after full movement", "PRINT_START BED=60").find(
+  CHECK(w.error("No trigger on y after full movement", "PRINT_START BED=60", false).find(
             "homing failed: the printer answered PRINT_START BED=60") != std::string::npos);
-  w.acknowledged("G1 X5");
+  w.acknowledged(false);  // G1 X5
   CHECK_FALSE(w.homed());
-  w.acknowledged("G28 X Y");
+  w.acknowledged(true);  // G28 X Y
   CHECK(w.homed());
-  CHECK(w.error("Move out of range: 10.000 250.000 0.300 [0.000]", "G1 Y250").empty());
-  CHECK(w.error("Must home axis first: 5.000 0.000 0.000 [0.000]", "G1 X5").find("lost its homing") !=
+  CHECK(w.error("Move out of range: 10.000 250.000 0.300 [0.000]", "G1 Y250", false).empty());
+  CHECK(w.error("Must home axis first: 5.000 0.000 0.000 [0.000]", "G1 X5", false).find("lost its homing") !=
         std::string::npos);
   CHECK(w.message("Home XYZ First").find("lost its homing") != std::string::npos);
   w.forget();  // a printer reset
-  CHECK(w.error("Must home axis first: 5.000 0.000 0.000 [0.000]", "G1 X5").empty());
+  CHECK(w.error("Must home axis first: 5.000 0.000 0.000 [0.000]", "G1 X5", false).empty());
 }
 
 TEST_CASE("sender: a failed G28 stops the print: nothing after it goes out and the print fails",

@@ -18,23 +18,25 @@
 #include <string>
 #include <string_view>
 
+namespace gcode {
+class Line;
+}
+
 namespace gcode::serial {
 
-// "G28", "g28 X Y", "G28 Z": a homing command (not G280, not G2).
-bool is_homing_command(std::string_view command);
+// G28 however written ("g28 X Y", "G028 Z"), not G28.1 or G280.
+bool is_homing_command(const Line& line);
 
 class HomingWatch {
  public:
   // An error `message` answering `command` (the oldest line in flight; empty
-  // when that is none of the file's). Returns why the print cannot go on,
-  // or nothing.
-  std::string error(std::string_view message, std::string_view command) const;
+  // when that is none of the file's), `homing` if that is a G28. Returns
+  // why the print cannot go on, or nothing.
+  std::string error(std::string_view message, std::string_view command, bool homing) const;
   // A message the printer said on its own (an echo).
   std::string message(std::string_view text) const;
-  // The printer acknowledged `command`.
-  void acknowledged(std::string_view command) {
-    if (is_homing_command(command)) homed_ = true;
-  }
+  // The printer acknowledged a line, `homing` if a G28.
+  void acknowledged(bool homing) { homed_ = homed_ || homing; }
   // The printer restarted: it knows no homing until a G28 again.
   void forget() { homed_ = false; }
   bool homed() const { return homed_; }

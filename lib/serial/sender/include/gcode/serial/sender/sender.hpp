@@ -277,6 +277,7 @@ class Sender : private TimeSink, private PrintHistory {
     bool silent_wait = false;    // waits for the user without a word (Prusa's M600)
     bool temperature_query = false;  // M105: answered in order with "ok T:..."
     bool instant = false;        // answered at once (G92, M104, G1 F1200 ...)
+    bool homes = false;          // G28 (homing_watch.hpp)
     double motion = 0;           // printer seconds of moves (the estimator's once final)
     double nominal = 0;          // length / feed rate: no move takes less
     bool motion_final = false;
@@ -324,9 +325,9 @@ class Sender : private TimeSink, private PrintHistory {
   void set_link(double bytes_per_second, double time_scale);
   void fail(std::string message);
   void print_lost(std::string why);
-  // The command of the oldest line in flight (an error answers it), empty
-  // when that is none of the file's.
-  std::string_view oldest_command() const;
+  // The oldest line in flight (an error answers it), nullptr when that is
+  // none of the file's.
+  const Slot* oldest_file_line() const;
   void check_done(double now);
   void probe(double now, bool silent);
   void handshake_timer(double now);
