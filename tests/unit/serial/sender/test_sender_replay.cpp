@@ -498,3 +498,25 @@ TEST_CASE("replay: the handshake comes first and MAX_CMD_SIZE from M115 sets the
   s.at(0.07);
   CHECK(s.sender.max_line() == 96);
 }
+
+TEST_CASE("replay: a line that lost its N on the way is resent and not counted as a command the firmware refused",
+          "[serial]") {
+  // Real Marlin: "N2 M117 2*.." arrived as "2 M117 2*..": it answers the
+  // unknown command with its ok, then refuses N3 (it expects 2) and asks
+  // for 2 again.
+  SenderReplay r;
+  Lines c = r.input_messages(3);
+  CHECK(r.sent() == numbered_range(1, 4, c));
+  r.reply({"ok", "echo:Unknown command: \"2 M117 2*18\"", "ok",
+           "Error:Line Number is not Last Line Number+1, Last Line: 1", "Resend: 2", "ok"},
+          0.01);
+  r.at(0.2);
+  r.sent();
+  for (double t = 0.3; t < 2 && r.sender.state() == SenderState::Printing; t += 0.1) {
+    r.reply({"ok"}, t);
+    r.sent();
+  }
+  CHECK(r.sender.state() == SenderState::Done);
+  CHECK(r.sender.stats().unknown_commands == 0);
+  CHECK(r.times_sent(2) == 2);
+}
